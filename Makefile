@@ -1,0 +1,38 @@
+# The two commands of the README: `make demo` and `make test`. Both do all set-up themselves.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+DEMO_INPUT ?= datasets/3dbag/3dbag_5910.city.json
+DEMO_OUT ?= $(BUILD)/demo
+
+.PHONY: all deps configure build test demo bench clean test-sanitize
+
+all: build
+
+deps:
+	@bash tools/setup-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@mkdir -p $(DEMO_OUT)
+	@$(BUILD)/tools/morphcut-city $(DEMO_INPUT) -o $(DEMO_OUT)/demo.morphcut.city.json \
+	  --report $(DEMO_OUT)/demo.morphcut.report.json --summary $(DEMO_OUT)/demo.morphcut.csv
+	@echo "demo outputs in $(DEMO_OUT)/: demo.morphcut.city.json, demo.morphcut.report.json, demo.morphcut.csv"
+
+bench: build
+	@bash tools/bench-all.sh $(BUILD)
+
+test-sanitize: deps
+	@cmake -S . -B $(BUILD)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMC_SANITIZE=ON -DMC_BUILD_BENCH=OFF >/dev/null
+	@cmake --build $(BUILD)-asan -j $(JOBS)
+	@cd $(BUILD)-asan && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,60 @@
+// Every algorithm parameter with its default. config/ fills this from YAML (or from the paper's
+// per-sample `NAME.off_config.json`); core/ only reads it. Names follow algorithm.md §2.4.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mc {
+
+struct PreprocessParams {
+  // Resolution. When cell_size <= 0 it is derived from the bounding-box diagonal:
+  // cell_size = f_d * diagonal, dist_thresh = cell_size / 4 (paper §4 "automatic resolution").
+  double cell_size = 0;      // sampling interval i (model units); <= 0 means automatic
+  double dist_thresh = 0;    // δ (model units); <= 0 means cell_size / 4
+  double f_d = 0.01;         // automatic resolution factor
+  // Region growing (plane segmentation). <= 0 distances mean "= dist_thresh".
+  double max_distance = 0;
+  double max_angle_deg = 10;
+  int min_region = 1;
+  double angle_thresh_deg = 10;  // θa: plane merge, candidate snapping, plane classes
+  // Carving.
+  int min_points = 100;
+  int max_points = 10000;
+  double inside_vote = 0.5;      // a cell is inside if its inside-point ratio exceeds this
+  double inconsistency = 1e-3;   // re-queue threshold, relative to the cell volume c^3 unit
+  int oracle_rays = 7;           // rays per point for the inside/outside majority vote
+  uint64_t seed = 1;             // every random choice derives from it (determinism)
+  // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).
+  std::string up_axis = "auto";
+  // Disjoint interior components smaller than this fraction of the total volume are dropped
+  // (and reported); 0 keeps every component.
+  double min_component_fraction = 0.0;
+  // Hausdorff fidelity: relative error bound of the bounded-error computation (of the diagonal).
+  double hausdorff_error = 0.001;
+  bool compute_hausdorff = true;
+};
+
+struct DecomposeParams {
+  std::vector<double> levels{0.1, 0.01, 0.001, 0.0001};  // LoD thresholds, strictly decreasing
+  double sigma = 2.0;            // ε of cost = g + ε·h; 1 = optimal search
+  int k = 4;                     // concave edges per attached part in h
+  double concave_thresh = 1.0;   // in units of π: keep lines with angle >= concave_thresh·π
+  bool with_bisector = true;
+  std::string cut_mode = "A";    // A, H, V, HV, HI, VI
+  double same_vol_factor = 1e-5; // duplicate / sliver tolerance relative to the root volume
+  int max_children = 64;         // best children kept per expansion (-1 = all, as RC)
+  int max_candidates = 12;       // top-K candidate planes per part by weight (0 = all)
+  int64_t node_budget = 20000;   // expanded nodes per search
+  bool significance_max = true;  // D(e) = max over samples (paper) instead of mean (RC)
+  bool merge_tiny_parts = true;
+};
+
+struct Params {
+  PreprocessParams pre;
+  DecomposeParams dec;
+  double timeout_s = 60;         // per-building deadline; <= 0 disables
+  int threads = 0;               // 0 = all cores
+};
+
+}  // namespace mc

@@ -1,0 +1,62 @@
+// Planes and the plane registry: the single source of truth for plane ids (algorithm.md §2.5).
+// Planes are stored with a unit normal in a canonical orientation (first non-zero normal
+// component positive), so a plane and its opposite share one id; which side is "outward" is
+// always derived from the B-rep, never from the stored orientation.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace mc {
+
+struct Plane {
+  Vec3 n;        // unit normal
+  double d = 0;  // n·x + d = 0
+  double signed_distance(const Vec3& p) const { return dot(n, p) + d; }
+  Vec3 project(const Vec3& p) const { return p - n * signed_distance(p); }
+};
+
+// Unit normal with canonical sign; returns false for a degenerate normal.
+bool canonicalize(Plane& p);
+
+struct BBox {
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  void add(const Vec3& p);
+  bool valid() const { return lo.x <= hi.x; }
+  Vec3 center() const { return (lo + hi) * 0.5; }
+  double diagonal() const { return valid() ? norm(hi - lo) : 0.0; }
+  std::array<Vec3, 8> corners() const;
+};
+
+// "Same plane", box variant (algorithm.md §2.5): normals within `angle_rad` (unoriented) and
+// the 8 box corners projected on `a` lie within `dist` of `b`.
+bool same_plane_in_box(const Plane& a, const Plane& b, double angle_rad, double dist, const BBox& box);
+
+enum class PlaneClass : uint8_t { Vertical, Horizontal, Inclined };
+// Pitch classes of algorithm.md §4.4 with θa = angle_rad; `up` is the vertical axis.
+PlaneClass classify_plane(const Plane& p, double angle_rad, const Vec3& up = {0, 0, 1});
+
+enum class PlaneOrigin : uint8_t { Region, Box, Candidate };
+
+class PlaneRegistry {
+ public:
+  // Returns the id of an identical (after canonicalisation, bit-equal) plane or adds it.
+  // Throws std::invalid_argument for a degenerate normal.
+  uint32_t add(Plane p, PlaneOrigin origin = PlaneOrigin::Region);
+  // Returns the id of the first registered plane in `pool` that is the same plane as `p` (box
+  // variant); otherwise adds `p`. Deterministic: the pool order decides ties.
+  uint32_t add_snapped(Plane p, const std::vector<uint32_t>& pool, double angle_rad, double dist,
+                       const BBox& box, PlaneOrigin origin = PlaneOrigin::Candidate);
+  const Plane& operator[](uint32_t id) const { return planes_[id]; }
+  PlaneOrigin origin(uint32_t id) const { return origins_[id]; }
+  size_t size() const { return planes_.size(); }
+  const std::vector<Plane>& planes() const { return planes_; }
+
+ private:
+  std::vector<Plane> planes_;
+  std::vector<PlaneOrigin> origins_;
+};
+
+}  // namespace mc

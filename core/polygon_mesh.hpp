@@ -1,0 +1,36 @@
+// A building's input surface as read from a file: a polygon soup with holes and semantic labels.
+// This is the hand-over type between io/ (readers) and core/ (preprocessing); it holds no
+// file-format details.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace mc {
+
+struct Polygon {
+  // rings[0] is the outer boundary, further rings are holes. Indices into PolygonMesh::vertices.
+  std::vector<std::vector<uint32_t>> rings;
+  // Index into PolygonMesh::semantic_labels, or -1 when the face carries no semantic surface.
+  int32_t semantic = -1;
+};
+
+struct PolygonMesh {
+  std::vector<Vec3> vertices;
+  std::vector<Polygon> faces;
+  // Distinct semantic surface type names ("RoofSurface", "WallSurface", "GroundSurface", ...).
+  std::vector<std::string> semantic_labels;
+
+  bool empty() const { return faces.empty(); }
+  // Index of `label` in semantic_labels, appending it when new.
+  int32_t label_index(const std::string& label) {
+    for (size_t i = 0; i < semantic_labels.size(); ++i)
+      if (semantic_labels[i] == label) return static_cast<int32_t>(i);
+    semantic_labels.push_back(label);
+    return static_cast<int32_t>(semantic_labels.size() - 1);
+  }
+};
+
+}  // namespace mc

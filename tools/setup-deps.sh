@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs every Debian package morphcut-city needs to build, test and run its demo.
+# Idempotent and quiet when everything is present; run as root (or with sudo available).
+set -euo pipefail
+
+PKGS=(
+  g++ cmake make ccache pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
+  libtbb-dev libembree-dev libgeographiclib-dev
+  nlohmann-json3-dev libyaml-cpp-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libspdlog-dev libfmt-dev
+)
+
+missing=()
+for p in "${PKGS[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  echo "setup-deps: installing ${missing[*]}" >&2
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# Optional: a JSON-schema validator for the output-schema tests (npm registry).
+# Tests that need it skip with a clear message when it cannot be installed.
+if [ "${MC_SKIP_NODE_TOOLS:-0}" != "1" ] && command -v npm >/dev/null 2>&1; then
+  here="$(cd "$(dirname "$0")/.." && pwd)"
+  if [ ! -x "$here/build/node_tools/node_modules/.bin/ajv" ]; then
+    mkdir -p "$here/build/node_tools"
+    (cd "$here/build/node_tools" && npm install --silent --no-audit --no-fund ajv-cli@5 ajv-formats@2 >/dev/null 2>&1) \
+      || echo "setup-deps: ajv-cli could not be installed; schema tests will be skipped" >&2
+  fi
+fi
+exit 0
