@@ -1,0 +1,125 @@
+#include "core/complex.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+namespace mc {
+namespace {
+
+BBox unit_box(double s = 1.0) {
+  BBox b;
+  b.add({0, 0, 0});
+  b.add({s, s, s});
+  return b;
+}
+
+// Every live cell is closed: each directed edge of its outward loops has its reverse.
+void expect_cells_closed(const CellComplex& cx) {
+  for (uint32_t c : cx.live_cells()) {
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (uint32_t f : cx.cell(c).facets) {
+      ASSERT_TRUE(cx.facet(f).alive);
+      ASSERT_TRUE(cx.facet(f).front == c || cx.facet(f).back == c);
+      const auto loop = cx.outward_loop(f, c);
+      for (size_t i = 0; i < loop.size(); ++i) edges[{loop[i], loop[(i + 1) % loop.size()]}]++;
+    }
+    for (const auto& [e, n] : edges) {
+      EXPECT_EQ(n, 1);
+      EXPECT_EQ(edges.count({e.second, e.first}), 1u) << "cell " << c << " open at edge";
+    }
+    EXPECT_GT(cx.cell_volume(c), 0);
+  }
+}
+
+// Conformity: every live facet appears in the facet lists of both of its cells.
+void expect_facets_shared(const CellComplex& cx) {
+  for (uint32_t f = 0; f < cx.num_facets(); ++f) {
+    const auto& fa = cx.facet(f);
+    if (!fa.alive) continue;
+    for (uint32_t c : {fa.front, fa.back}) {
+      if (c == CellComplex::kNone) continue;
+      const auto& fs = cx.cell(c).facets;
+      EXPECT_NE(std::find(fs.begin(), fs.end(), f), fs.end());
+    }
+  }
+}
+
+double total_volume(const CellComplex& cx) {
+  double v = 0;
+  for (uint32_t c : cx.live_cells()) v += cx.cell_volume(c);
+  return v;
+}
+
+TEST(CellComplex, BoxCellIsClosedWithUnitVolume) {
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box());
+  EXPECT_EQ(cx.live_cells().size(), 1u);
+  EXPECT_NEAR(cx.cell_volume(0), 1.0, 1e-12);
+  expect_cells_closed(cx);
+}
+
+TEST(CellComplex, SplitByMidPlaneHalvesTheBox) {
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box());
+  const uint32_t p = reg.add({{1, 0, 0}, -0.5});
+  auto r = cx.split(0, p);
+  ASSERT_TRUE(r);
+  EXPECT_NEAR(cx.cell_volume(r->neg), 0.5, 1e-12);
+  EXPECT_NEAR(cx.cell_volume(r->pos), 0.5, 1e-12);
+  EXPECT_LT(cx.cell_centroid(r->neg).x, 0.5);
+  EXPECT_GT(cx.cell_centroid(r->pos).x, 0.5);
+  expect_cells_closed(cx);
+  // A plane through a face or outside does not split.
+  EXPECT_FALSE(cx.split(r->neg, reg.add({{1, 0, 0}, 0.0})));
+  EXPECT_FALSE(cx.split(r->neg, p));
+}
+
+TEST(CellComplex, SplitThroughVerticesAndEdgesStaysExact) {
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box());
+  // Diagonal plane x = y passes through two vertical edges exactly.
+  auto r = cx.split(0, reg.add({{1, -1, 0}, 0.0}));
+  ASSERT_TRUE(r);
+  EXPECT_NEAR(cx.cell_volume(r->neg) + cx.cell_volume(r->pos), 1.0, 1e-12);
+  // Plane x + y + z = 1 through three vertices of the box.
+  auto r2 = cx.split(r->pos, reg.add({{1, 1, 1}, -1.0}));
+  ASSERT_TRUE(r2);
+  expect_cells_closed(cx);
+  expect_facets_shared(cx);
+  EXPECT_NEAR(total_volume(cx), 1.0, 1e-12);
+}
+
+TEST(CellComplex, ManyRandomSplitsKeepTheComplexClosedAndConforming) {
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box(10));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), pos(1, 9);
+  int splits = 0;
+  for (int i = 0; i < 60; ++i) {
+    Vec3 n{u(rng), u(rng), u(rng)};
+    if (i % 3 == 0) n = {double(i % 2), double((i + 1) % 2), 0};  // axis planes: degenerate contacts
+    const Vec3 at{pos(rng), pos(rng), pos(rng)};
+    const uint32_t p = reg.add({n, -dot(normalized(n), at) * norm(n)});
+    for (uint32_t c : cx.live_cells()) splits += cx.split(c, p).has_value();
+  }
+  EXPECT_GT(splits, 60);
+  expect_cells_closed(cx);
+  expect_facets_shared(cx);
+  EXPECT_NEAR(total_volume(cx), 1000.0, 1e-8);
+}
+
+TEST(CellComplex, LeavesFollowTheBspTree) {
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box());
+  auto r = cx.split(0, reg.add({{0, 0, 1}, -0.25}));
+  cx.split(r->pos, reg.add({{0, 1, 0}, -0.5}));
+  std::vector<uint32_t> out;
+  cx.leaves(0, out);
+  EXPECT_EQ(out.size(), 3u);
+  EXPECT_EQ(cx.cell_side(r->neg, reg.add({{0, 0, 1}, -0.25})), -1);
+}
+
+}  // namespace
+}  // namespace mc
