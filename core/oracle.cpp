@@ -1,0 +1,170 @@
+#include "core/oracle.hpp"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace mc {
+
+namespace {
+
+// One Embree device per process: creating one per building would respawn its thread pool.
+RTCDevice shared_device() {
+  static RTCDevice device = [] {
+    RTCDevice d = rtcNewDevice(nullptr);
+    if (!d) throw std::runtime_error("Embree: cannot create device");
+    return d;
+  }();
+  return device;
+}
+
+using Hits = std::vector<std::pair<float, unsigned>>;  // (t, primitive id)
+
+// Context extended with the hit list (the usual Embree idiom: the filter casts back).
+struct CollectContext {
+  RTCIntersectContext base;
+  Hits* hits;
+};
+
+// Records every hit and rejects it, so traversal continues to the end of the ray.
+void collect_filter(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<CollectContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    ctx->hits->emplace_back(RTCRayN_tfar(args->ray, args->N, i), RTCHitN_primID(args->hit, args->N, i));
+    args->valid[i] = 0;
+  }
+}
+
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+double unit_double(uint64_t x) { return static_cast<double>(x >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+struct InsideOracle::Impl {
+  RTCScene scene = nullptr;
+  Vec3 origin;        // soup bbox centre: Embree works in float, so coordinates are centred
+  double dedup_t = 0; // hits closer than this along a ray are one crossing
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+  }
+};
+
+InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
+    : impl_(std::make_unique<Impl>()), rays_(std::max(1, rays)), seed_(seed) {
+  for (const auto& t : soup.triangles)
+    for (uint32_t v : t) box_.add(soup.vertices.at(v));
+  if (!box_.valid()) return;  // no triangles: everything is outside
+  impl_->origin = box_.center();
+  impl_->dedup_t = 1e-5 * std::max(box_.diagonal(), 1e-9);
+
+  RTCDevice device = shared_device();
+  impl_->scene = rtcNewScene(device);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         3 * sizeof(float), soup.vertices.size()));
+  for (size_t i = 0; i < soup.vertices.size(); ++i) {
+    const Vec3 p = soup.vertices[i] - impl_->origin;
+    vb[3 * i] = static_cast<float>(p.x);
+    vb[3 * i + 1] = static_cast<float>(p.y);
+    vb[3 * i + 2] = static_cast<float>(p.z);
+  }
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                            3 * sizeof(unsigned), soup.triangles.size()));
+  for (size_t i = 0; i < soup.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k) ib[3 * i + k] = soup.triangles[i][k];
+  rtcSetGeometryIntersectFilterFunction(geom, collect_filter);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(impl_->scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(impl_->scene);
+  if (const RTCError err = rtcGetDeviceError(device); err != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
+}
+
+InsideOracle::~InsideOracle() = default;
+
+int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
+  if (!impl_->scene) return 0;
+  thread_local Hits hits;
+  hits.clear();
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.hits = &hits;
+  RTCRayHit rh;
+  const Vec3 o = p - impl_->origin;
+  rh.ray.org_x = static_cast<float>(o.x);
+  rh.ray.org_y = static_cast<float>(o.y);
+  rh.ray.org_z = static_cast<float>(o.z);
+  rh.ray.dir_x = static_cast<float>(dir.x);
+  rh.ray.dir_y = static_cast<float>(dir.y);
+  rh.ray.dir_z = static_cast<float>(dir.z);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.flags = 0;
+  rh.ray.time = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx.base, &rh);
+  if (hits.empty()) return 0;
+  // Spatial splits can report one primitive twice: drop repeats of a primitive first, then
+  // merge hits at nearly equal t (shared edges and vertices, coincident duplicate triangles).
+  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second < b.second : a.first < b.first;
+  });
+  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
+             hits.end());
+  std::sort(hits.begin(), hits.end());
+  const double scale = 1.0 / norm(dir);  // t is in units of |dir|
+  int count = 1;
+  float last = hits[0].first;
+  for (size_t i = 1; i < hits.size(); ++i) {
+    if ((hits[i].first - last) / scale > impl_->dedup_t) ++count;
+    last = hits[i].first;
+  }
+  return count;
+}
+
+bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
+  if (!box_.valid() || p.x < box_.lo.x || p.y < box_.lo.y || p.z < box_.lo.z || p.x > box_.hi.x ||
+      p.y > box_.hi.y || p.z > box_.hi.z)
+    return false;
+  const uint64_t base = splitmix64(seed_ ^ splitmix64(point_id));
+  int votes = 0;
+  for (int k = 0; k < rays_; ++k) {
+    const uint64_t r1 = splitmix64(base + 2 * static_cast<uint64_t>(k));
+    const uint64_t r2 = splitmix64(base + 2 * static_cast<uint64_t>(k) + 1);
+    // Azimuths stratified over the circle; z = sin(elevation) uniform in [0.5, 1], i.e.
+    // elevation 30°..90°, uniform over that spherical cap.
+    const double phi = 2 * M_PI * (k + unit_double(r1)) / rays_;
+    const double z = 0.5 + 0.5 * unit_double(r2);
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    votes += count_crossings(p, Vec3{r * std::cos(phi), r * std::sin(phi), z}) & 1;
+  }
+  return 2 * votes > rays_;
+}
+
+void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id, std::vector<uint8_t>& out) const {
+  out.assign(pts.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i], first_id + i) ? 1 : 0;
+  });
+}
+
+}  // namespace mc

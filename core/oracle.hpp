@@ -1,0 +1,43 @@
+// Inside/outside oracle over a triangle soup (algorithm.md §3.2): Embree ray casting, parity
+// of the number of distinct surface crossings along several upward rays, majority vote.
+// Rays go into the upper hemisphere (elevation 30°–90° about +z) so an open-bottom building
+// (walls and roof, no floor) still encloses its interior. The soup must be z-up.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/plane.hpp"
+#include "core/soup.hpp"
+#include "core/vec3.hpp"
+
+namespace mc {
+
+class InsideOracle {
+ public:
+  // `rays` per point (odd avoids ties; a tie counts as outside). Directions are jittered per
+  // point from (seed, point_id) alone, so results do not depend on threads or call order.
+  InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed);
+  ~InsideOracle();
+  InsideOracle(const InsideOracle&) = delete;
+  InsideOracle& operator=(const InsideOracle&) = delete;
+
+  // Thread-safe. Points outside the soup's bounding box are outside.
+  bool inside(const Vec3& p, uint64_t point_id) const;
+  // out[i] = inside(pts[i], first_id + i), computed in parallel (TBB).
+  void classify(const std::vector<Vec3>& pts, uint64_t first_id, std::vector<uint8_t>& out) const;
+
+  // Number of distinct surface crossings along the ray p + t·dir, t > 0 (hits at nearly equal
+  // t merged, so a ray through a shared edge counts once). Exposed for tests and diagnostics.
+  int count_crossings(const Vec3& p, const Vec3& dir) const;
+  const BBox& bbox() const { return box_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  BBox box_;
+  int rays_;
+  uint64_t seed_;
+};
+
+}  // namespace mc
