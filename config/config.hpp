@@ -1,0 +1,35 @@
+// Loading the run configuration (YAML, see config/lod.yaml for every key with its default) into
+// mc::Params + mc::RunConfig, and echoing the effective configuration for the run report.
+//
+// YAML layout: sections `preprocess:` and `decompose:` whose keys are the Params field names,
+// plus top-level `timeout_s`, `threads`, `lod`, `output_levels`, `in_flight`, `log_level`.
+// `cell_size`, `dist_thresh`, `max_distance` accept `auto`; `in_flight` accepts `auto`;
+// `output_levels` is `all` or a list of values taken from `decompose.levels`. Missing keys keep
+// their defaults; unknown keys, duplicate keys, wrong types and out-of-range values throw
+// ConfigError whose message starts with the key path and ends with "(file:line)".
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "config/config_error.hpp"
+#include "config/paper_config.hpp"
+#include "config/run_config.hpp"
+#include "config/validate.hpp"
+#include "core/params.hpp"
+
+namespace mc {
+
+struct LoadedConfig {
+  Params params;
+  RunConfig run;
+};
+
+// Throws ConfigError (also for an unreadable file or invalid YAML).
+LoadedConfig load_config_file(const std::string& path);
+// `source` names the text in error messages.
+LoadedConfig load_config_string(const std::string& yaml, const std::string& source = "<config>");
+
+// The configuration in the YAML layout (JSON is YAML, so this loads back to the same values).
+nlohmann::json effective_config_json(const Params& params, const RunConfig& run);
+
+}  // namespace mc

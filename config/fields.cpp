@@ -1,0 +1,43 @@
+#include "config/fields.hpp"
+
+namespace mc::config_detail {
+
+std::vector<Field> fields_of(Params& p) {
+  PreprocessParams& a = p.pre;
+  DecomposeParams& d = p.dec;
+  return {
+      {"preprocess", "cell_size", AutoDouble{&a.cell_size}},
+      {"preprocess", "dist_thresh", AutoDouble{&a.dist_thresh}},
+      {"preprocess", "f_d", &a.f_d},
+      {"preprocess", "max_distance", AutoDouble{&a.max_distance}},
+      {"preprocess", "max_angle_deg", &a.max_angle_deg},
+      {"preprocess", "min_region", &a.min_region},
+      {"preprocess", "angle_thresh_deg", &a.angle_thresh_deg},
+      {"preprocess", "min_points", &a.min_points},
+      {"preprocess", "max_points", &a.max_points},
+      {"preprocess", "inside_vote", &a.inside_vote},
+      {"preprocess", "inconsistency", &a.inconsistency},
+      {"preprocess", "oracle_rays", &a.oracle_rays},
+      {"preprocess", "seed", &a.seed},
+      {"preprocess", "up_axis", &a.up_axis},
+      {"preprocess", "min_component_fraction", &a.min_component_fraction},
+      {"preprocess", "hausdorff_error", &a.hausdorff_error},
+      {"preprocess", "compute_hausdorff", &a.compute_hausdorff},
+      {"decompose", "levels", &d.levels},
+      {"decompose", "sigma", &d.sigma},
+      {"decompose", "k", &d.k},
+      {"decompose", "concave_thresh", &d.concave_thresh},
+      {"decompose", "with_bisector", &d.with_bisector},
+      {"decompose", "cut_mode", &d.cut_mode},
+      {"decompose", "same_vol_factor", &d.same_vol_factor},
+      {"decompose", "max_children", &d.max_children},
+      {"decompose", "max_candidates", &d.max_candidates},
+      {"decompose", "node_budget", &d.node_budget},
+      {"decompose", "significance_max", &d.significance_max},
+      {"decompose", "merge_tiny_parts", &d.merge_tiny_parts},
+      {"", "timeout_s", &p.timeout_s},
+      {"", "threads", &p.threads},
+  };
+}
+
+}  // namespace mc::config_detail

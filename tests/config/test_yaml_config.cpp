@@ -1,0 +1,130 @@
+// YAML loading: defaults, every key of lod.yaml, round trip through the JSON echo.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+
+#include "config/config.hpp"
+
+namespace {
+
+const std::string kLodYaml = std::string(MC_SOURCE_DIR) + "/config/lod.yaml";
+
+TEST(YamlConfig, EmptyDocumentGivesDefaults) {
+  const auto c = mc::load_config_string("");
+  EXPECT_EQ(mc::effective_config_json(c.params, c.run),
+            mc::effective_config_json(mc::Params{}, mc::RunConfig{}));
+}
+
+TEST(YamlConfig, LodYamlEqualsTheDefaults) {
+  const auto c = mc::load_config_file(kLodYaml);
+  EXPECT_EQ(mc::effective_config_json(c.params, c.run),
+            mc::effective_config_json(mc::Params{}, mc::RunConfig{}));
+  const mc::Params d;
+  EXPECT_EQ(c.params.dec.levels, d.dec.levels);
+  EXPECT_EQ(c.params.pre.cell_size, d.pre.cell_size);
+  EXPECT_EQ(c.params.pre.seed, d.pre.seed);
+  EXPECT_EQ(c.params.dec.max_children, d.dec.max_children);
+  EXPECT_EQ(c.run.in_flight, 0);
+  EXPECT_TRUE(c.run.output_levels.empty());
+}
+
+// lod.yaml is the documentation of every key: it must list exactly the keys the loader knows.
+TEST(YamlConfig, LodYamlListsEveryKey) {
+  const YAML::Node root = YAML::LoadFile(kLodYaml);
+  const nlohmann::json j = mc::effective_config_json(mc::Params{}, mc::RunConfig{});
+  std::set<std::string> in_yaml, in_json;
+  for (const auto& kv : root) {
+    const std::string k = kv.first.Scalar();
+    if (kv.second.IsMap())
+      for (const auto& kv2 : kv.second) in_yaml.insert(k + "." + kv2.first.Scalar());
+    else
+      in_yaml.insert(k);
+  }
+  for (const auto& [k, v] : j.items()) {
+    if (v.is_object())
+      for (const auto& [k2, v2] : v.items()) in_json.insert(k + "." + k2);
+    else
+      in_json.insert(k);
+  }
+  EXPECT_EQ(in_yaml, in_json);
+  EXPECT_GE(in_json.size(), 31u);  // 29 Params fields + 2 top-level + 4 run keys, minus none
+}
+
+TEST(YamlConfig, ReadsValues) {
+  const auto c = mc::load_config_string(R"(
+preprocess:
+  cell_size: 0.5
+  dist_thresh: 0.125
+  max_angle_deg: 15
+  seed: 18446744073709551615
+  up_axis: y
+  compute_hausdorff: false
+decompose:
+  levels: [0.2, 0.02, 0.002]
+  cut_mode: HV
+  max_children: -1
+  node_budget: 5000000000
+timeout_s: 12.5
+threads: 3
+in_flight: 5
+lod: 2.2
+output_levels: [0.002, 0.2]
+log_level: debug
+)");
+  EXPECT_DOUBLE_EQ(c.params.pre.cell_size, 0.5);
+  EXPECT_DOUBLE_EQ(c.params.pre.dist_thresh, 0.125);
+  EXPECT_DOUBLE_EQ(c.params.pre.max_angle_deg, 15);
+  EXPECT_EQ(c.params.pre.seed, UINT64_MAX);
+  EXPECT_EQ(c.params.pre.up_axis, "y");
+  EXPECT_FALSE(c.params.pre.compute_hausdorff);
+  EXPECT_EQ(c.params.dec.levels, (std::vector<double>{0.2, 0.02, 0.002}));
+  EXPECT_EQ(c.params.dec.cut_mode, "HV");
+  EXPECT_EQ(c.params.dec.max_children, -1);
+  EXPECT_EQ(c.params.dec.node_budget, 5000000000LL);
+  EXPECT_DOUBLE_EQ(c.params.timeout_s, 12.5);
+  EXPECT_EQ(c.params.threads, 3);
+  EXPECT_EQ(c.run.in_flight, 5);
+  EXPECT_EQ(c.run.lod, "2.2");
+  EXPECT_EQ(c.run.output_levels, (std::vector<std::size_t>{0, 2}));
+  EXPECT_EQ(c.run.log_level, "debug");
+  EXPECT_TRUE(mc::writes_level(c.run, 2));
+  EXPECT_FALSE(mc::writes_level(c.run, 1));
+  // Untouched keys keep their defaults.
+  EXPECT_EQ(c.params.pre.min_points, mc::Params{}.pre.min_points);
+}
+
+TEST(YamlConfig, AutoAndExplicitResolution) {
+  auto c = mc::load_config_string("preprocess: {cell_size: auto, dist_thresh: 0.3}");
+  EXPECT_EQ(c.params.pre.cell_size, 0);
+  EXPECT_DOUBLE_EQ(c.params.pre.dist_thresh, 0.3);
+  const auto j = mc::effective_config_json(c.params, c.run);
+  EXPECT_EQ(j["preprocess"]["cell_size"], "auto");
+  EXPECT_EQ(j["preprocess"]["dist_thresh"], 0.3);
+}
+
+TEST(YamlConfig, EffectiveJsonLoadsBackToTheSameConfig) {
+  const auto c = mc::load_config_string(R"(
+preprocess: {cell_size: 2, f_d: 0.02, seed: 7, up_axis: z}
+decompose: {levels: [0.1, 0.05], sigma: 1, with_bisector: false}
+in_flight: 9
+output_levels: [0.05]
+)");
+  const nlohmann::json j = mc::effective_config_json(c.params, c.run);
+  const auto back = mc::load_config_string(j.dump(2), "echo");
+  EXPECT_EQ(mc::effective_config_json(back.params, back.run), j);
+  EXPECT_EQ(j["output_levels"], nlohmann::json::array({0.05}));
+  EXPECT_EQ(j["in_flight"], 9);
+}
+
+TEST(YamlConfig, InFlightDefaultsToTwiceTheThreads) {
+  const auto c = mc::load_config_string("threads: 3");
+  EXPECT_EQ(mc::effective_in_flight(c.run, 3), 6);
+  EXPECT_EQ(mc::effective_in_flight(mc::load_config_string("in_flight: 4").run, 3), 4);
+}
+
+TEST(YamlConfig, MissingFileIsAConfigError) {
+  EXPECT_THROW(mc::load_config_file("/nonexistent/lod.yaml"), mc::ConfigError);
+}
+
+}  // namespace
