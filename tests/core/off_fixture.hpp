@@ -1,0 +1,106 @@
+// Test-only OFF reader and access to the paper's sample buildings (io/ has the real reader;
+// core tests must not depend on it). Accepts OFF/NOFF/COFF/... headers, comments, and the
+// counts on the header line or the next one; vertex lines keep their first three numbers.
+#pragma once
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/polygon_mesh.hpp"
+
+namespace mc::test {
+
+inline PolygonMesh load_off(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  }
+  if (lines.empty() || lines[0].find("OFF") == std::string::npos) throw std::runtime_error("not OFF: " + path);
+  std::istringstream header(lines[0].substr(lines[0].find("OFF") + 3));
+  size_t nv = 0, nf = 0, next = 1;
+  if (!(header >> nv >> nf)) {
+    std::istringstream counts(lines.at(1));
+    counts >> nv >> nf;
+    next = 2;
+  }
+  PolygonMesh m;
+  for (size_t i = 0; i < nv; ++i) {
+    std::istringstream s(lines.at(next++));
+    Vec3 v;
+    s >> v.x >> v.y >> v.z;
+    m.vertices.push_back(v);
+  }
+  for (size_t i = 0; i < nf; ++i) {
+    std::istringstream s(lines.at(next++));
+    size_t n = 0;
+    s >> n;
+    Polygon f;
+    f.rings.emplace_back(n);
+    for (auto& idx : f.rings[0]) s >> idx;
+    m.faces.push_back(std::move(f));
+  }
+  return m;
+}
+
+inline std::filesystem::path samples_dir() {
+  return std::filesystem::path(MC_SOURCE_DIR) / ".." / "shared" / "datasets" / "morphcut-samples";
+}
+
+struct Sample {
+  std::string name;  // "sample11"
+  std::filesystem::path off;
+  std::map<std::string, double> config;  // numeric keys of NAME.off_config.json (may be empty)
+};
+
+// Minimal "key": number extraction; enough for the flat sample configs.
+inline std::map<std::string, double> read_numeric_config(const std::filesystem::path& p) {
+  std::map<std::string, double> out;
+  std::ifstream in(p);
+  if (!in) return out;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string s = ss.str();
+  for (size_t q = s.find('"'); q != std::string::npos; q = s.find('"', q + 1)) {
+    const size_t e = s.find('"', q + 1);
+    if (e == std::string::npos) break;
+    const size_t colon = s.find_first_not_of(" \t\r\n", e + 1);
+    if (colon != std::string::npos && s[colon] == ':') {
+      const char* start = s.c_str() + colon + 1;
+      char* end = nullptr;
+      const double v = std::strtod(start, &end);
+      if (end != start) out[s.substr(q + 1, e - q - 1)] = v;
+    }
+    q = e;
+  }
+  return out;
+}
+
+// Every sample folder with an input mesh, sorted by name.
+inline std::vector<Sample> samples() {
+  std::vector<Sample> out;
+  if (!std::filesystem::exists(samples_dir())) return out;
+  for (const auto& dir : std::filesystem::directory_iterator(samples_dir())) {
+    if (!dir.is_directory()) continue;
+    for (const auto& f : std::filesystem::directory_iterator(dir.path())) {
+      const std::string fn = f.path().filename().string();
+      if (fn.size() > 4 && fn.ends_with(".off") && !fn.ends_with("_reconstruction.off")) {
+        Sample s{dir.path().filename().string(), f.path(), {}};
+        s.config = read_numeric_config(f.path().string() + "_config.json");
+        out.push_back(std::move(s));
+      }
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Sample& a, const Sample& b) { return a.name < b.name; });
+  return out;
+}
+
+}  // namespace mc::test
