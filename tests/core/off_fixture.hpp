@@ -59,6 +59,9 @@ struct Sample {
   std::string name;  // "sample11"
   std::filesystem::path off;
   std::map<std::string, double> config;  // numeric keys of NAME.off_config.json (may be empty)
+  // numeric "key=value" pairs of NAME.off_param.txt: the parameters the paper's run actually
+  // used (also for samples without a config) and its result counts, e.g. planar_region.
+  std::map<std::string, double> used;
 };
 
 // Minimal "key": number extraction; enough for the flat sample configs.
@@ -84,6 +87,26 @@ inline std::map<std::string, double> read_numeric_config(const std::filesystem::
   return out;
 }
 
+inline std::map<std::string, double> read_param_txt(const std::filesystem::path& p) {
+  std::map<std::string, double> out;
+  std::ifstream in(p);
+  std::string tok;
+  while (in >> tok) {
+    for (std::string item; !tok.empty();) {
+      const size_t comma = tok.find(',');
+      item = tok.substr(0, comma);
+      tok = comma == std::string::npos ? "" : tok.substr(comma + 1);
+      const size_t eq = item.find('=');
+      if (eq == std::string::npos) continue;
+      const std::string val = item.substr(eq + 1);
+      char* end = nullptr;
+      const double v = std::strtod(val.c_str(), &end);
+      if (!val.empty() && end == val.c_str() + val.size()) out[item.substr(0, eq)] = v;
+    }
+  }
+  return out;
+}
+
 // Every sample folder with an input mesh, sorted by name.
 inline std::vector<Sample> samples() {
   std::vector<Sample> out;
@@ -95,6 +118,7 @@ inline std::vector<Sample> samples() {
       if (fn.size() > 4 && fn.ends_with(".off") && !fn.ends_with("_reconstruction.off")) {
         Sample s{dir.path().filename().string(), f.path(), {}};
         s.config = read_numeric_config(f.path().string() + "_config.json");
+        s.used = read_param_txt(f.path().string() + "_param.txt");
         out.push_back(std::move(s));
       }
     }
