@@ -1,0 +1,202 @@
+#include "core/carve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <unordered_set>
+
+namespace mc {
+
+namespace {
+
+bool boxes_overlap(const BBox& a, const BBox& b, double grow) {
+  return a.lo.x <= b.hi.x + grow && b.lo.x <= a.hi.x + grow && a.lo.y <= b.hi.y + grow &&
+         b.lo.y <= a.hi.y + grow && a.lo.z <= b.hi.z + grow && b.lo.z <= a.hi.z + grow;
+}
+
+// Does plane q really cross cell c: a vertex beyond δ on both sides and the region nearby.
+bool crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta) {
+  const BBox cb = cx.cell_bbox(c);
+  if (!boxes_overlap(cb, q.bbox, 3 * delta)) return false;
+  const Plane& pl = cx.planes()[q.plane];
+  bool pos = false, neg = false;
+  for (uint32_t v : cx.cell_vertices(c)) {
+    const double s = pl.signed_distance(cx.point(v));
+    pos |= s > delta;
+    neg |= s < -delta;
+    if (pos && neg) return true;
+  }
+  return false;
+}
+
+uint64_t mix(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+// Uniform point in tetrahedron (a, b, c, d) from a point of the unit cube (Rocchini-Cignoni fold).
+Vec3 fold_to_tet(double s, double t, double u, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  if (s + t > 1) {
+    s = 1 - s;
+    t = 1 - t;
+  }
+  if (t + u > 1) {
+    const double tmp = u;
+    u = 1 - s - t;
+    t = 1 - tmp;
+  } else if (s + t + u > 1) {
+    const double tmp = u;
+    u = s + t + u - 1;
+    s = 1 - t - tmp;
+  }
+  return a + (b - a) * s + (c - a) * t + (d - a) * u;
+}
+
+}  // namespace
+
+std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, uint64_t seed) {
+  struct Tet {
+    Vec3 a, b, c, d;
+    double vol;
+  };
+  std::vector<Tet> tets;
+  const auto& facets = cx.cell(cell).facets;
+  const Vec3 o = cx.cell_centroid(cell);
+  double total = 0;
+  for (uint32_t f : facets) {
+    const auto loop = cx.outward_loop(f, cell);
+    for (size_t i = 1; i + 1 < loop.size(); ++i) {
+      Tet t{o, cx.point(loop[0]), cx.point(loop[i]), cx.point(loop[i + 1]), 0};
+      t.vol = std::abs(dot(t.b - t.a, cross(t.c - t.a, t.d - t.a))) / 6.0;
+      total += t.vol;
+      tets.push_back(t);
+    }
+  }
+  std::vector<Vec3> pts;
+  if (total <= 0 || count <= 0) return pts;
+  pts.reserve(count);
+  // R3 low-discrepancy sequence with a seeded offset; counts per tetrahedron by cumulative rounding.
+  constexpr double g = 1.22074408460575947536;
+  const double a1 = 1 / g, a2 = 1 / (g * g), a3 = 1 / (g * g * g);
+  const uint64_t h = mix(seed);
+  double o1 = (h & 0xffff) / 65536.0, o2 = ((h >> 16) & 0xffff) / 65536.0, o3 = ((h >> 32) & 0xffff) / 65536.0;
+  double cum = 0;
+  long done = 0;
+  size_t k = 0;
+  for (const Tet& t : tets) {
+    cum += t.vol;
+    const long upto = std::lround(count * cum / total);
+    for (; done < upto; ++done, ++k) {
+      const double s = std::fmod(o1 + a1 * k, 1.0), u = std::fmod(o2 + a2 * k, 1.0), w = std::fmod(o3 + a3 * k, 1.0);
+      pts.push_back(fold_to_tet(s, u, w, t.a, t.b, t.c, t.d));
+    }
+  }
+  return pts;
+}
+
+CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const PointClassifier& classify,
+                  const CarveParams& p, std::chrono::steady_clock::time_point deadline) {
+  CarveResult res;
+  const double unit = p.cell_size * p.cell_size * p.cell_size;
+  const double box_volume = cx.cell_volume(cx.root_cell());
+  std::vector<uint8_t> inside_label(cx.num_cells() + 1024, 0);
+  std::vector<uint8_t> flags;
+
+  struct Entry {
+    double score;
+    uint32_t cell;
+    bool operator<(const Entry& o) const { return score != o.score ? score < o.score : cell > o.cell; }
+  };
+  std::priority_queue<Entry> queue;
+  std::vector<std::vector<uint32_t>> todo(cx.num_cells());  // remaining plane indices per cell
+
+  // Votes one cell; returns its inconsistent volume.
+  auto vote = [&](uint32_t c) {
+    const double v = cx.cell_volume(c);
+    const long n = std::clamp<long>(static_cast<long>(std::ceil(v / unit)), p.min_points, p.max_points);
+    const auto pts = sample_cell(cx, c, static_cast<int>(n), p.seed ^ (uint64_t(c) << 20));
+    classify(pts, (uint64_t(c) << 24) ^ p.seed, flags);
+    res.points += pts.size();
+    size_t in = 0;
+    for (uint8_t f : flags) in += f != 0;
+    const double r = pts.empty() ? 0.0 : double(in) / pts.size();
+    if (inside_label.size() <= c) inside_label.resize(c + 1024, 0);
+    inside_label[c] = r > p.inside_vote;
+    return inside_label[c] ? v * (1 - r) : v * r;
+  };
+  auto enqueue = [&](uint32_t c, double score, std::vector<uint32_t> remaining) {
+    const bool big_outside = !inside_label[c] && cx.cell_volume(c) > 0.05 * box_volume;
+    if (remaining.empty() || !(score > p.inconsistency * unit || big_outside)) return;
+    if (todo.size() <= c) todo.resize(c + 1024);
+    todo[c] = std::move(remaining);
+    queue.push({score, c});
+  };
+
+  std::vector<uint32_t> all(planes.size());
+  for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const uint32_t root = cx.root_cell();
+  enqueue(root, vote(root), all);
+
+  while (!queue.empty()) {
+    if (std::chrono::steady_clock::now() > deadline || cx.num_cells() > p.max_cells) {
+      res.truncated = true;
+      break;
+    }
+    const uint32_t c = queue.top().cell;
+    queue.pop();
+    std::vector<uint32_t> remaining = std::move(todo[c]);
+    // The largest remaining region plane that really crosses the cell.
+    size_t i = 0;
+    for (; i < remaining.size(); ++i)
+      if (crosses(cx, c, planes[remaining[i]], p.dist)) break;
+    if (i == remaining.size()) continue;
+    const uint32_t plane_index = remaining[i];
+    auto split = cx.split(c, planes[plane_index].plane);
+    remaining.erase(remaining.begin(), remaining.begin() + static_cast<long>(i) + 1);
+    if (!split) {  // cannot happen after `crosses`, but never loop on it
+      enqueue(c, 1e300, remaining);
+      continue;
+    }
+    ++res.splits;
+    for (uint32_t child : {split->neg, split->pos}) {
+      std::vector<uint32_t> kept;
+      for (uint32_t q : remaining)
+        if (crosses(cx, child, planes[q], p.dist)) kept.push_back(q);
+      enqueue(child, vote(child), std::move(kept));
+    }
+  }
+  for (uint32_t c : cx.live_cells()) {
+    ++res.cells;
+    if (c < inside_label.size() && inside_label[c]) res.inside.push_back(c);
+  }
+  return res;
+}
+
+std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  std::unordered_set<uint32_t> in(cells.begin(), cells.end());
+  std::unordered_set<uint32_t> seen;
+  std::vector<uint32_t> sorted = cells;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::vector<uint32_t>> comps;
+  for (uint32_t s : sorted) {
+    if (seen.count(s)) continue;
+    std::vector<uint32_t> comp, stack{s};
+    seen.insert(s);
+    while (!stack.empty()) {
+      const uint32_t c = stack.back();
+      stack.pop_back();
+      comp.push_back(c);
+      for (uint32_t f : cx.cell(c).facets) {
+        const uint32_t o = cx.other_side(f, c);
+        if (o != CellComplex::kNone && in.count(o) && seen.insert(o).second) stack.push_back(o);
+      }
+    }
+    std::sort(comp.begin(), comp.end());
+    comps.push_back(std::move(comp));
+  }
+  return comps;
+}
+
+}  // namespace mc

@@ -1,0 +1,312 @@
+#include "core/decompose.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "core/search.hpp"
+#include "core/surface.hpp"
+
+namespace mc {
+
+namespace {
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::vector<uint32_t> current_leaves(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  std::vector<uint32_t> out;
+  for (uint32_t c : cells) cx.leaves(c, out);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// One part of a level being worked on.
+struct Work {
+  std::vector<uint32_t> cells;  // live cells
+  int component = 0;
+};
+
+// A part searched at this level: its refined space and search inputs.
+struct Prepared {
+  CellSpace space;
+  SearchInput input;
+  PartInfo root;
+  bool search = false;
+};
+
+AnalysisContext make_context(const Preprocessed& pre, const DecomposeParams& p, double level) {
+  AnalysisContext ctx;
+  ctx.dec = &p;
+  ctx.dist = pre.dist;
+  ctx.angle_rad = pre.angle_rad;
+  const Vec3 ext = pre.box.hi - pre.box.lo;
+  ctx.a_diag = std::max(ext.z * std::sqrt(ext.x * ext.x + ext.y * ext.y), 1e-12);
+  ctx.level = level;
+  ctx.box = pre.box;
+  return ctx;
+}
+
+// Sequential phase: analyse the part, register its candidate planes, refine its cells by them,
+// and precompute on which side of every candidate each refined cell lies (exact predicates).
+Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
+  CellComplex& cx = *pre.complex;
+  PlaneRegistry& reg = pre.planes;
+  Prepared pr;
+  CellSpace coarse = make_space(cx, w.cells);
+  const PlaneResolver add = [&](const Plane& g, const std::vector<uint32_t>& pool) -> std::optional<uint32_t> {
+    return reg.add_snapped(g, pool, ctx.angle_rad, ctx.dist, ctx.box, PlaneOrigin::Candidate);
+  };
+  PartInfo info = analyze_part(coarse, coarse.all(), ctx, add);
+  if (info.e_sig == 0 || info.candidates.empty()) {
+    pr.space = std::move(coarse);
+    pr.root = std::move(info);
+    return pr;
+  }
+  std::vector<uint32_t> cells = w.cells;
+  for (uint32_t plane : info.candidates) {
+    std::vector<uint32_t> next;
+    for (uint32_t c : cells) {
+      if (auto r = cx.split(c, plane)) {
+        next.push_back(r->neg);
+        next.push_back(r->pos);
+      } else {
+        next.push_back(c);
+      }
+    }
+    cells = std::move(next);
+  }
+  std::sort(cells.begin(), cells.end());
+  pr.space = make_space(cx, cells);
+  pr.input.pool = info.candidates;
+  for (uint32_t plane : info.candidates) {
+    Bits pos(pr.space.words(), 0);
+    for (uint32_t i = 0; i < cells.size(); ++i)
+      if (cx.cell_side(cells[i], plane) > 0) set_bit(pos, i);
+    pr.input.positive.push_back(std::move(pos));
+  }
+  pr.input.ctx = ctx;
+  const auto pool = info.candidates;
+  const PlaneResolver lookup = [&](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
+    for (uint32_t id : pool)
+      if (same_plane_in_box(g, reg[id], ctx.angle_rad, ctx.dist, ctx.box)) return id;
+    return std::nullopt;
+  };
+  pr.root = analyze_part(pr.space, pr.space.all(), ctx, lookup);
+  pr.search = pr.root.e_sig > 0 && !pr.root.candidates.empty();
+  return pr;
+}
+
+// Merges parts smaller than v_min into the neighbour sharing the largest face area
+// (algorithm.md §6.8), smallest first; parts without a neighbour stay.
+void merge_tiny_parts(const CellComplex& cx, std::vector<Work>& parts, double v_min) {
+  for (int guard = 0; guard < 10000; ++guard) {
+    std::unordered_map<uint32_t, uint32_t> owner;
+    std::vector<double> vol(parts.size(), 0);
+    for (uint32_t i = 0; i < parts.size(); ++i)
+      for (uint32_t c : parts[i].cells) {
+        owner[c] = i;
+        vol[i] += cx.cell_volume(c);
+      }
+    int victim = -1;
+    for (uint32_t i = 0; i < parts.size(); ++i)
+      if (vol[i] < v_min && (victim < 0 || vol[i] < vol[victim])) victim = static_cast<int>(i);
+    if (victim < 0) return;
+    std::map<uint32_t, double> shared;
+    for (uint32_t c : parts[victim].cells)
+      for (uint32_t f : cx.cell(c).facets) {
+        const uint32_t o = cx.other_side(f, c);
+        auto it = o == CellComplex::kNone ? owner.end() : owner.find(o);
+        if (it != owner.end() && it->second != static_cast<uint32_t>(victim)) shared[it->second] += cx.facet_area(f);
+      }
+    if (shared.empty()) {
+      v_min = std::min(v_min, vol[victim]);  // isolated: keep it, look at larger ones only
+      continue;
+    }
+    uint32_t target = shared.begin()->first;
+    for (const auto& [p, a] : shared)
+      if (a > shared[target]) target = p;
+    auto& dst = parts[target].cells;
+    dst.insert(dst.end(), parts[victim].cells.begin(), parts[victim].cells.end());
+    std::sort(dst.begin(), dst.end());
+    parts.erase(parts.begin() + victim);
+  }
+}
+
+// Whole-building statistics of a level (normalised by the singleton cell R, algorithm.md §6.8).
+void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& work,
+                      const AnalysisContext& ctx, double n_max, double delta0, LevelResult& out) {
+  const CellComplex& cx = *pre.complex;
+  std::vector<uint32_t> all;
+  for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
+  std::sort(all.begin(), all.end());
+  const CellSpace space = make_space(cx, all);
+  std::unordered_map<uint32_t, uint32_t> local;
+  for (uint32_t i = 0; i < all.size(); ++i) local[all[i]] = i;
+  const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+  std::unordered_map<uint32_t, uint32_t> owner;
+  for (uint32_t i = 0; i < work.size(); ++i)
+    for (uint32_t c : work[i].cells) owner[c] = i;
+  double sum_delta = 0, sum_v = 0, wsum = 0;
+  int sum_e = 0;
+  out.parts.clear();
+  out.min_convexity = 1;
+  out.mean_convexity = 0;
+  for (uint32_t i = 0; i < work.size(); ++i) {
+    Bits b(space.words(), 0);
+    for (uint32_t c : work[i].cells) set_bit(b, local[c]);
+    const PartInfo info = analyze_part(space, std::move(b), ctx, none);
+    PartResult r;
+    r.cells = work[i].cells;
+    r.component = work[i].component;
+    r.volume = info.volume;
+    r.hull_volume = info.hull_volume;
+    r.convexity = info.delta == 0 ? 1.0 : info.convexity();
+    std::vector<uint32_t> nb;
+    for (uint32_t c : work[i].cells)
+      for (uint32_t f : cx.cell(c).facets) {
+        const uint32_t o = cx.other_side(f, c);
+        auto it = o == CellComplex::kNone ? owner.end() : owner.find(o);
+        if (it != owner.end() && it->second != i) nb.push_back(it->second);
+      }
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    r.neighbours = std::move(nb);
+    sum_delta += info.delta;
+    sum_e += info.e_all;
+    sum_v += info.volume;
+    wsum += info.volume * r.convexity;
+    out.min_convexity = std::min(out.min_convexity, r.convexity);
+    out.mean_convexity += r.convexity;
+    out.parts.push_back(std::move(r));
+  }
+  out.mean_convexity /= std::max<size_t>(1, work.size());
+  out.convexity = sum_v > 0 ? wsum / sum_v : 0;
+  out.remaining_concave = sum_e;
+  Objective obj;
+  obj.n_max = n_max;
+  obj.delta0 = delta0 > 0 ? delta0 : 1.0;
+  obj.sigma = p.sigma;
+  obj.k = p.k;
+  out.g = obj.g(work.size(), sum_delta);
+  out.h = obj.h(sum_e, sum_delta);
+  out.cost = out.g + p.sigma * out.h;
+}
+
+}  // namespace
+
+Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time_point deadline) {
+  const auto t0 = Clock::now();
+  Decomposition out;
+  CellComplex& cx = *pre.complex;
+  std::vector<Work> work;
+  for (size_t i = 0; i < pre.components.size(); ++i) work.push_back({pre.components[i].cells, static_cast<int>(i)});
+  double total_volume = 0;
+  for (const auto& c : pre.components) total_volume += c.volume;
+
+  // Whole-building normalisers from the singleton cell R (all components together).
+  double n_max = 1, delta0 = 1;
+  {
+    std::vector<uint32_t> all;
+    for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
+    std::sort(all.begin(), all.end());
+    const CellSpace space = make_space(cx, all);
+    const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+    const PartInfo r = analyze_part(space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), none);
+    out.concave_edges = r.e_all;
+    n_max = r.e_all + 1;
+    delta0 = r.delta;
+  }
+
+  for (size_t li = 0; li < p.levels.size(); ++li) {
+    const auto tl = Clock::now();
+    LevelResult level;
+    level.lod = p.levels[li];
+    const AnalysisContext ctx = make_context(pre, p, level.lod);
+    for (Work& w : work) w.cells = current_leaves(cx, w.cells);
+    if (Clock::now() <= deadline) {
+      std::vector<Prepared> prepared;
+      prepared.reserve(work.size());
+      for (const Work& w : work) {
+        prepared.push_back(prepare(pre, w, ctx));
+        prepared.back().input.deadline = deadline;
+      }
+      for (Prepared& pr : prepared) pr.input.space = &pr.space;
+      std::vector<SearchResult> results(work.size());
+      tbb::parallel_for(size_t(0), work.size(), [&](size_t i) {
+        if (prepared[i].search) results[i] = search(prepared[i].input, prepared[i].root);
+      });
+      std::vector<Work> next;
+      for (size_t i = 0; i < work.size(); ++i) {
+        if (!prepared[i].search) {
+          next.push_back({current_leaves(cx, work[i].cells), work[i].component});
+          continue;
+        }
+        const SearchResult& sr = results[i];
+        level.nodes_expanded += sr.expanded;
+        level.truncated |= sr.deadline_hit || sr.budget_hit;
+        if (sr.deadline_hit) {
+          out.partial = true;
+          out.reason = "deadline reached during the search at LoD " + std::to_string(level.lod);
+        }
+        for (const PartInfo& part : sr.parts) {
+          Work nw{{}, work[i].component};
+          for (uint32_t k = 0; k < prepared[i].space.cells.size(); ++k)
+            if (test_bit(part.bits, k)) nw.cells.push_back(prepared[i].space.cells[k]);
+          next.push_back(std::move(nw));
+        }
+      }
+      work = std::move(next);
+      if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
+    } else {
+      out.partial = true;
+      if (out.reason.empty()) out.reason = "deadline reached before LoD " + std::to_string(level.lod);
+      level.truncated = true;
+    }
+    level_statistics(pre, p, work, ctx, n_max, delta0, level);
+    level.seconds = seconds_since(tl);
+    out.levels.push_back(std::move(level));
+  }
+  out.seconds = seconds_since(t0);
+  return out;
+}
+
+namespace {
+PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
+  const CellComplex& cx = *pre.complex;
+  const Surface s = extract_surface(cx, cells, solid);
+  PolygonMesh m;
+  m.semantic_labels = pre.labels;
+  const int32_t closure = m.label_index("ClosureSurface");
+  m = to_polygon_mesh(cx, s, Vec3{}, [&](const SurfaceFace& f) {
+    if (f.cut || pre.planes.origin(f.plane) != PlaneOrigin::Region) return closure;
+    return pre.label_of_plane(f.plane);
+  });
+  m.semantic_labels = pre.labels;
+  m.label_index("ClosureSurface");
+  for (Vec3& v : m.vertices) v = pre.to_input(v);
+  return m;
+}
+
+std::vector<uint32_t> all_singleton_cells(const Preprocessed& pre) {
+  std::vector<uint32_t> all;
+  for (const auto& c : pre.components)
+    for (uint32_t x : c.cells) pre.complex->leaves(x, all);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+}  // namespace
+
+PolygonMesh part_mesh(const Preprocessed& pre, const PartResult& part) {
+  const std::vector<uint32_t> solid = all_singleton_cells(pre);
+  return surface_mesh(pre, current_leaves(*pre.complex, part.cells), &solid);
+}
+
+PolygonMesh singleton_mesh(const Preprocessed& pre) {
+  const std::vector<uint32_t> solid = all_singleton_cells(pre);
+  return surface_mesh(pre, solid, nullptr);
+}
+
+}  // namespace mc

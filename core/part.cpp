@@ -1,0 +1,405 @@
+#include "core/part.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include "core/hull.hpp"
+
+namespace mc {
+
+uint64_t hash_bits(const Bits& b) {
+  uint64_t h = 0x84222325cbf29ce4ULL;
+  for (uint64_t w : b) {
+    h ^= w + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+size_t count_bits(const Bits& b) {
+  size_t n = 0;
+  for (uint64_t w : b) n += static_cast<size_t>(__builtin_popcountll(w));
+  return n;
+}
+
+Bits CellSpace::all() const {
+  Bits b(words(), 0);
+  for (uint32_t i = 0; i < cells.size(); ++i) set_bit(b, i);
+  return b;
+}
+
+CellSpace make_space(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  CellSpace s;
+  s.cx = &cx;
+  s.cells = cells;
+  std::unordered_map<uint32_t, uint32_t> local;
+  for (uint32_t i = 0; i < cells.size(); ++i) local[cells[i]] = i;
+  s.sides.resize(cells.size());
+  s.volume.resize(cells.size());
+  s.vertices.resize(cells.size());
+  for (uint32_t i = 0; i < cells.size(); ++i) {
+    const uint32_t c = cells[i];
+    for (uint32_t f : cx.cell(c).facets) {
+      const uint32_t o = cx.other_side(f, c);
+      auto it = o == CellComplex::kNone ? local.end() : local.find(o);
+      s.sides[i].push_back({f, it == local.end() ? CellSpace::kOut : it->second});
+    }
+    s.volume[i] = cx.cell_volume(c);
+    s.vertices[i] = cx.cell_vertices(c);
+  }
+  return s;
+}
+
+std::vector<Bits> components(const CellSpace& s, const Bits& bits) {
+  std::vector<Bits> out;
+  Bits seen(bits.size(), 0);
+  std::vector<uint32_t> stack;
+  for (uint32_t i = 0; i < s.cells.size(); ++i) {
+    if (!test_bit(bits, i) || test_bit(seen, i)) continue;
+    Bits comp(bits.size(), 0);
+    stack.assign(1, i);
+    set_bit(seen, i);
+    while (!stack.empty()) {
+      const uint32_t c = stack.back();
+      stack.pop_back();
+      set_bit(comp, c);
+      for (const auto& side : s.sides[c]) {
+        const uint32_t o = side.other;
+        if (o != CellSpace::kOut && test_bit(bits, o) && !test_bit(seen, o)) {
+          set_bit(seen, o);
+          stack.push_back(o);
+        }
+      }
+    }
+    out.push_back(std::move(comp));
+  }
+  return out;
+}
+
+namespace {
+
+struct Incidence {
+  uint32_t facet, cell;  // cell: global id
+  uint32_t a, b;         // directed edge in the outward loop
+};
+
+// One mesh edge between two boundary faces on different planes, with its dihedral angle.
+struct DihedralEdge {
+  uint32_t a, b;
+  uint32_t p1, p2;  // p1 < p2
+  Vec3 n1, n2;      // outward normals matching p1, p2
+  double angle;
+  bool reflex;
+};
+
+// Line through the intersection of two planes, closest to `near`.
+bool plane_pair_line(const Plane& A, const Plane& B, const Vec3& near, Vec3& point, Vec3& dir) {
+  const Vec3 u = cross(A.n, B.n);
+  const double uu = dot(u, u);
+  if (uu < 1e-12) return false;
+  const double h1 = -A.d, h2 = -B.d;
+  const Vec3 p0 = (cross(B.n, u) * h1 + cross(u, A.n) * h2) / uu;
+  dir = u / std::sqrt(uu);
+  point = p0 + dir * dot(near - p0, dir);
+  return true;
+}
+
+struct RawLine {
+  ConcaveLine line;
+  bool reflex;
+};
+
+// Groups edges by (plane pair, reflex) and splits each group into chains of edges sharing vertices.
+std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralEdge>& edges) {
+  const PlaneRegistry& reg = s.cx->planes();
+  std::map<std::tuple<uint32_t, uint32_t, bool>, std::vector<size_t>> groups;
+  for (size_t i = 0; i < edges.size(); ++i) groups[{edges[i].p1, edges[i].p2, edges[i].reflex}].push_back(i);
+  std::vector<RawLine> out;
+  for (const auto& [key, idx] : groups) {
+    // Union-find over the group's edges through shared endpoints.
+    std::vector<size_t> parent(idx.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](size_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    std::unordered_map<uint32_t, size_t> at_vertex;
+    for (size_t k = 0; k < idx.size(); ++k) {
+      for (uint32_t v : {edges[idx[k]].a, edges[idx[k]].b}) {
+        auto [it, fresh] = at_vertex.emplace(v, k);
+        if (!fresh) parent[find(k)] = find(it->second);
+      }
+    }
+    std::map<size_t, std::vector<size_t>> chains;
+    for (size_t k = 0; k < idx.size(); ++k) chains[find(k)].push_back(idx[k]);
+    for (const auto& [root, members] : chains) {
+      const DihedralEdge& e0 = edges[members.front()];
+      RawLine rl;
+      rl.reflex = std::get<2>(key);
+      ConcaveLine& L = rl.line;
+      L.p1 = e0.p1;
+      L.p2 = e0.p2;
+      L.n1 = e0.n1;
+      L.n2 = e0.n2;
+      double len_sum = 0, angle_sum = 0;
+      for (size_t m : members) {
+        const double len = norm(s.cx->point(edges[m].b) - s.cx->point(edges[m].a));
+        len_sum += len;
+        angle_sum += len * edges[m].angle;
+      }
+      L.angle = len_sum > 0 ? angle_sum / len_sum : e0.angle;
+      if (!plane_pair_line(reg[L.p1], reg[L.p2], s.cx->point(e0.a), L.point, L.dir)) continue;
+      L.t0 = 1e300;
+      L.t1 = -1e300;
+      for (size_t m : members)
+        for (uint32_t v : {edges[m].a, edges[m].b}) {
+          const double t = dot(s.cx->point(v) - L.point, L.dir);
+          L.t0 = std::min(L.t0, t);
+          L.t1 = std::max(L.t1, t);
+        }
+      out.push_back(rl);
+    }
+  }
+  return out;
+}
+
+// Merges nearly coincident lines that share a plane (algorithm.md §4.2 step 2): a small step
+// (convex + reflex within δ) becomes a ≈180° line that is then dropped; two shallow reflex
+// edges around a chamfer add up into one stronger line.
+void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
+  for (int guard = 0; guard < 1000; ++guard) {
+    bool merged = false;
+    for (size_t i = 0; i < lines.size() && !merged; ++i) {
+      for (size_t j = i + 1; j < lines.size() && !merged; ++j) {
+        ConcaveLine& L1 = lines[i].line;
+        ConcaveLine& L2 = lines[j].line;
+        if (!lines[i].reflex && !lines[j].reflex) continue;
+        uint32_t shared, b, c;
+        Vec3 nb, nc;
+        if (L1.p1 == L2.p1 && L1.p2 != L2.p2) { shared = L1.p1; b = L1.p2; nb = L1.n2; c = L2.p2; nc = L2.n2; }
+        else if (L1.p1 == L2.p2 && L1.p2 != L2.p1) { shared = L1.p1; b = L1.p2; nb = L1.n2; c = L2.p1; nc = L2.n1; }
+        else if (L1.p2 == L2.p1 && L1.p1 != L2.p2) { shared = L1.p2; b = L1.p1; nb = L1.n1; c = L2.p2; nc = L2.n2; }
+        else if (L1.p2 == L2.p2 && L1.p1 != L2.p1) { shared = L1.p2; b = L1.p1; nb = L1.n1; c = L2.p1; nc = L2.n1; }
+        else continue;
+        (void)shared;
+        if (b == c || std::abs(dot(L1.dir, L2.dir)) < 0.95) continue;
+        const Vec3 mid2 = L2.point + L2.dir * (0.5 * (L2.t0 + L2.t1));
+        const Vec3 off = mid2 - L1.point;
+        if (norm(off - L1.dir * dot(off, L1.dir)) > delta) continue;
+        ConcaveLine M;
+        const Vec3 mid1 = L1.point + L1.dir * (0.5 * (L1.t0 + L1.t1));
+        if (!plane_pair_line(reg[b], reg[c], (mid1 + mid2) * 0.5, M.point, M.dir)) continue;
+        auto extent = [&](const ConcaveLine& L, double& lo, double& hi) {
+          const double s0 = dot(L.point + L.dir * L.t0 - M.point, M.dir);
+          const double s1 = dot(L.point + L.dir * L.t1 - M.point, M.dir);
+          lo = std::min(s0, s1);
+          hi = std::max(s0, s1);
+        };
+        double a0, a1, b0, b1;
+        extent(L1, a0, a1);
+        extent(L2, b0, b1);
+        M.t0 = std::max(a0, b0);
+        M.t1 = std::min(a1, b1);
+        if (M.t1 - M.t0 <= delta) continue;
+        M.p1 = std::min(b, c);
+        M.p2 = std::max(b, c);
+        M.n1 = b < c ? nb : nc;
+        M.n2 = b < c ? nc : nb;
+        M.angle = L1.angle + L2.angle - M_PI;
+        // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were.
+        std::vector<RawLine> next;
+        for (size_t k = 0; k < lines.size(); ++k)
+          if (k != i && k != j) next.push_back(lines[k]);
+        for (const RawLine* src : {&lines[i], &lines[j]}) {
+          double lo, hi;
+          extent(src->line, lo, hi);
+          const double sign = dot(src->line.dir, M.dir) >= 0 ? 1.0 : -1.0;
+          auto keep_piece = [&](double s0, double s1) {
+            if (s1 - s0 <= delta) return;
+            RawLine r = *src;
+            const double u0 = dot(M.point + M.dir * s0 - r.line.point, r.line.dir);
+            const double u1 = dot(M.point + M.dir * s1 - r.line.point, r.line.dir);
+            r.line.t0 = std::min(u0, u1);
+            r.line.t1 = std::max(u0, u1);
+            next.push_back(r);
+          };
+          (void)sign;
+          keep_piece(lo, std::min(hi, M.t0));
+          keep_piece(std::max(lo, M.t1), hi);
+        }
+        next.push_back({M, M.angle > M_PI});
+        lines = std::move(next);
+        merged = true;
+      }
+    }
+    if (!merged) return;
+  }
+}
+
+// Distance from s along unit b to the boundary of the convex hull (closed form over facets).
+double exit_distance(const std::vector<Plane>& hull, const Vec3& s, const Vec3& b) {
+  double t = 1e300;
+  for (const Plane& f : hull) {
+    const double nb = dot(f.n, b);
+    if (nb <= 1e-12) continue;
+    t = std::min(t, std::max(0.0, -f.signed_distance(s) / nb));
+  }
+  return t == 1e300 ? 0.0 : t;
+}
+
+}  // namespace
+
+PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve) {
+  const CellComplex& cx = *s.cx;
+  const PlaneRegistry& reg = cx.planes();
+  const DecomposeParams& dec = *ctx.dec;
+  PartInfo info;
+  info.bits = std::move(bits);
+  info.hash = hash_bits(info.bits);
+
+  // Volume, boundary incidences and hull points.
+  std::unordered_map<uint64_t, std::vector<Incidence>> by_edge;
+  std::vector<uint32_t> hull_vertices;
+  for (uint32_t i = 0; i < s.cells.size(); ++i) {
+    if (!test_bit(info.bits, i)) continue;
+    ++info.cell_count;
+    info.volume += s.volume[i];
+    for (const auto& side : s.sides[i]) {
+      if (side.other != CellSpace::kOut && test_bit(info.bits, side.other)) continue;
+      const auto loop = cx.outward_loop(side.facet, s.cells[i]);
+      for (size_t k = 0; k < loop.size(); ++k) {
+        const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+        by_edge[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)].push_back({side.facet, s.cells[i], a, b});
+        hull_vertices.push_back(a);
+      }
+    }
+  }
+  std::sort(hull_vertices.begin(), hull_vertices.end());
+  hull_vertices.erase(std::unique(hull_vertices.begin(), hull_vertices.end()), hull_vertices.end());
+  std::vector<Vec3> pts;
+  pts.reserve(hull_vertices.size());
+  for (uint32_t v : hull_vertices) pts.push_back(cx.point(v));
+  const Hull hull = convex_hull(pts);
+  info.hull_volume = hull.volume;
+  info.delta = std::max(0.0, info.hull_volume - info.volume);
+  if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;
+
+  // Dihedral edges between boundary faces on different planes (2-manifold edges only).
+  std::vector<DihedralEdge> edges;
+  std::vector<uint64_t> keys;
+  keys.reserve(by_edge.size());
+  for (const auto& kv : by_edge) keys.push_back(kv.first);
+  std::sort(keys.begin(), keys.end());  // deterministic order
+  for (uint64_t key : keys) {
+    const auto& inc = by_edge[key];
+    if (inc.size() != 2) continue;
+    const uint32_t pa = cx.facet(inc[0].facet).plane, pb = cx.facet(inc[1].facet).plane;
+    if (pa == pb) continue;
+    const Vec3 N1 = cx.outward_normal(inc[0].facet, inc[0].cell);
+    const Vec3 N2 = cx.outward_normal(inc[1].facet, inc[1].cell);
+    const Vec3 e = normalized(cx.point(inc[0].b) - cx.point(inc[0].a));
+    const Vec3 u1 = cross(N1, e);  // into face 1 (loops are CCW seen from outside)
+    const bool reflex = dot(u1, N2) > 0;
+    const double c = std::clamp(dot(N1, N2), -1.0, 1.0);
+    const double angle = reflex ? M_PI + std::acos(c) : M_PI - std::acos(c);
+    DihedralEdge d{inc[0].a, inc[0].b, std::min(pa, pb), std::max(pa, pb), pa < pb ? N1 : N2, pa < pb ? N2 : N1,
+                   angle, reflex};
+    edges.push_back(d);
+  }
+  std::vector<RawLine> raw = build_lines(s, edges);
+  merge_lines(raw, reg, ctx.dist);
+
+  // Reflex lines above the concavity threshold, weighted by length × depth into the hull.
+  const double min_angle = dec.concave_thresh * M_PI + 1e-6;
+  const double floor = 1e-6 * ctx.a_diag;
+  for (RawLine& r : raw) {
+    ConcaveLine& L = r.line;
+    if (L.angle < min_angle || L.length() <= 0) continue;
+    const Vec3 b = normalized(L.n1 + L.n2);
+    const int n = std::clamp(static_cast<int>(L.length() / std::max(ctx.dist, 1e-12)), 2, 16);
+    double dmax = 0, dsum = 0;
+    for (int k = 0; k <= n; ++k) {
+      const Vec3 sp = L.point + L.dir * (L.t0 + (L.t1 - L.t0) * k / n);
+      const double d = exit_distance(hull.facets, sp, b);
+      dmax = std::max(dmax, d);
+      dsum += d;
+    }
+    L.weight = L.length() * (dec.significance_max ? dmax : dsum / (n + 1));
+    if (L.weight >= floor) info.lines.push_back(L);
+  }
+  std::stable_sort(info.lines.begin(), info.lines.end(),
+                   [](const ConcaveLine& a, const ConcaveLine& b) { return a.weight > b.weight; });
+  info.e_all = static_cast<int>(info.lines.size());
+  const double sig = ctx.level * ctx.a_diag;
+  for (const auto& L : info.lines) info.e_sig += L.weight >= sig;
+
+  // Candidate planes of the significant lines (algorithm.md §4.5).
+  std::vector<std::pair<uint32_t, double>> cands;  // plane id, accumulated weight
+  auto add = [&](uint32_t id, double w) {
+    for (auto& c : cands)
+      if (c.first == id) {
+        c.second += w;
+        return;
+      }
+    cands.emplace_back(id, w);
+  };
+  const Vec3 up{0, 0, 1};
+  std::vector<uint32_t> pool;
+  for (const auto& L : info.lines) {
+    if (L.weight < sig) break;
+    add(L.p1, L.weight);
+    add(L.p2, L.weight);
+  }
+  for (const auto& c : cands) pool.push_back(c.first);
+  for (const auto& L : info.lines) {
+    if (L.weight < sig) break;
+    const PlaneClass c1 = classify_plane(reg[L.p1], ctx.angle_rad), c2 = classify_plane(reg[L.p2], ctx.angle_rad);
+    const bool horizontal_line = std::abs(L.dir.z) <= 0.1;
+    auto is = [&](PlaneClass a, PlaneClass b) { return (c1 == a && c2 == b) || (c1 == b && c2 == a); };
+    std::vector<Plane> extra;
+    const Vec3 mid = L.point + L.dir * (0.5 * (L.t0 + L.t1));
+    auto vertical_through_line = [&] {
+      const Vec3 n = cross(L.dir, up);
+      if (norm(n) > 1e-6) extra.push_back({normalized(n), -dot(normalized(n), mid)});
+    };
+    if (!horizontal_line) {
+      if (is(PlaneClass::Vertical, PlaneClass::Vertical) && dec.with_bisector) {
+        const Vec3 n = L.n1 - L.n2;  // bisector through the material of the reflex angle
+        if (norm(n) > 1e-9) extra.push_back({normalized(n), -dot(normalized(n), mid)});
+      } else if (is(PlaneClass::Inclined, PlaneClass::Inclined)) {
+        vertical_through_line();
+      }
+    } else {
+      if (is(PlaneClass::Horizontal, PlaneClass::Inclined) || is(PlaneClass::Horizontal, PlaneClass::Horizontal)) {
+        vertical_through_line();
+      } else if (is(PlaneClass::Inclined, PlaneClass::Inclined)) {
+        extra.push_back({up, -mid.z});
+        vertical_through_line();
+      }
+    }
+    for (const Plane& p : extra) {
+      if (auto id = resolve(p, pool)) {
+        if (std::find(pool.begin(), pool.end(), *id) == pool.end()) pool.push_back(*id);
+        add(*id, L.weight);
+      }
+    }
+  }
+  std::stable_sort(cands.begin(), cands.end(), [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second > b.second : a.first < b.first;
+  });
+  for (const auto& [id, w] : cands) {
+    const PlaneClass pc = classify_plane(reg[id], ctx.angle_rad);
+    const std::string& m = dec.cut_mode;
+    const bool keep = m == "A" || (m == "H" && pc == PlaneClass::Horizontal) || (m == "V" && pc == PlaneClass::Vertical) ||
+                      (m == "HV" && pc != PlaneClass::Inclined) || (m == "HI" && pc != PlaneClass::Vertical) ||
+                      (m == "VI" && pc != PlaneClass::Horizontal);
+    if (keep) info.candidates.push_back(id);
+    if (dec.max_candidates > 0 && static_cast<int>(info.candidates.size()) >= dec.max_candidates) break;
+  }
+  return info;
+}
+
+}  // namespace mc

@@ -1,0 +1,142 @@
+#include "core/preprocess.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/carve.hpp"
+#include "core/hausdorff.hpp"
+#include "core/oracle.hpp"
+#include "core/segmentation.hpp"
+#include "core/soup.hpp"
+#include "core/surface.hpp"
+#include "core/up_axis.hpp"
+
+namespace mc {
+
+Vec3 Preprocessed::to_input(const Vec3& p) const { return from_z_up(p + offset, up_axis); }
+
+namespace {
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+}  // namespace
+
+Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline) {
+  const auto t0 = Clock::now();
+  Preprocessed out;
+  out.input_faces = input.faces.size();
+  if (input.faces.empty()) throw std::runtime_error("empty geometry: no faces");
+
+  // Frame: rotate to z-up, centre on the bounding box (all thresholds are then scale-relative).
+  PolygonMesh mesh = input;
+  out.up_axis = p.up_axis == "y" ? 1 : (p.up_axis == "z" ? 2 : detect_up_axis(mesh));
+  if (out.up_axis != 2) to_z_up(mesh, out.up_axis);
+  BBox raw;
+  for (const Polygon& f : mesh.faces)
+    for (const auto& r : f.rings)
+      for (uint32_t v : r)
+        if (v < mesh.vertices.size() && is_finite(mesh.vertices[v])) raw.add(mesh.vertices[v]);
+  if (!raw.valid()) throw std::runtime_error("degenerate geometry: no finite vertex");
+  const double diag0 = raw.diagonal();
+  if (!(diag0 > 0)) throw std::runtime_error("degenerate geometry: zero extent");
+  out.cell_size = p.cell_size > 0 ? p.cell_size : p.f_d * diag0;
+  out.dist = p.dist_thresh > 0 ? p.dist_thresh : out.cell_size / 4;
+  out.angle_rad = p.angle_thresh_deg * M_PI / 180.0;
+  mesh = clean_soup(mesh, std::min(out.dist * 0.1, diag0 * 1e-6), &out.problems);
+  if (mesh.faces.empty()) throw std::runtime_error("degenerate geometry: no valid face after cleaning");
+  out.offset = bbox_center(mesh);
+  translate(mesh, -out.offset);
+  for (const Vec3& v : mesh.vertices) out.box.add(v);
+  out.labels = mesh.semantic_labels;
+
+  // Planes.
+  SegmentationParams sp = segmentation_params(p);
+  sp.dist_thresh = out.dist;
+  sp.max_distance = p.max_distance > 0 ? p.max_distance : out.dist;
+  sp.min_area = out.cell_size * out.cell_size;
+  const auto regions = segment_planes(mesh, sp);
+  out.regions = regions.size();
+  if (regions.empty()) throw std::runtime_error("degenerate geometry: no plane with enough area");
+
+  // The carving box, padded so that the outermost walls cut off slabs thicker than δ.
+  const double pad = std::max(2 * out.cell_size, 4 * out.dist);
+  BBox cbox = out.box;
+  cbox.lo -= Vec3{pad, pad, pad};
+  cbox.hi += Vec3{pad, pad, pad};
+  out.complex = std::make_unique<CellComplex>(out.planes, cbox);
+  std::vector<CarvePlane> cps;
+  for (const auto& r : regions) {
+    const uint32_t id = out.planes.add(r.plane, PlaneOrigin::Region);
+    if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
+    if (out.plane_label[id] < 0) out.plane_label[id] = r.semantic;
+    cps.push_back({id, r.bbox});
+  }
+
+  // Oracle and carving.
+  const TriangleSoup tris = triangulate(mesh);
+  if (tris.triangles.empty()) throw std::runtime_error("degenerate geometry: nothing to triangulate");
+  InsideOracle oracle(tris, p.oracle_rays, p.seed);
+  CarveParams cp;
+  cp.cell_size = out.cell_size;
+  cp.dist = out.dist;
+  cp.min_points = p.min_points;
+  cp.max_points = p.max_points;
+  cp.inside_vote = p.inside_vote;
+  cp.inconsistency = p.inconsistency;
+  cp.seed = p.seed;
+  const CarveResult cr = carve(
+      *out.complex, cps,
+      [&](const std::vector<Vec3>& pts, uint64_t first, std::vector<uint8_t>& flags) {
+        oracle.classify(pts, first, flags);
+      },
+      cp, deadline);
+  out.cells = cr.cells;
+  out.inside_cells = cr.inside.size();
+  out.oracle_points = cr.points;
+  out.truncated = cr.truncated;
+  if (cr.inside.empty()) throw std::runtime_error("no interior: the oracle found no inside cell");
+
+  // Singleton cells: every face-connected component of the interior cells.
+  auto comps = connected_components(*out.complex, cr.inside);
+  double total = 0;
+  std::vector<SingletonComponent> sc;
+  for (auto& c : comps) {
+    const double v = surface_volume(*out.complex, c);
+    total += v;
+    sc.push_back({std::move(c), v});
+  }
+  std::stable_sort(sc.begin(), sc.end(), [](const auto& a, const auto& b) { return a.volume > b.volume; });
+  for (auto& c : sc) {
+    if (c.volume < p.min_component_fraction * total) {
+      ++out.dropped_components;
+      out.dropped_volume += c.volume;
+    } else {
+      out.components.push_back(std::move(c));
+    }
+  }
+  if (out.dropped_components)
+    out.problems.push_back("dropped " + std::to_string(out.dropped_components) +
+                           " small interior component(s), volume " + std::to_string(out.dropped_volume));
+
+  // Closedness and fidelity of the whole singleton (all components).
+  std::vector<uint32_t> all;
+  for (const auto& c : out.components) all.insert(all.end(), c.cells.begin(), c.cells.end());
+  const Surface s = extract_surface(*out.complex, all);
+  out.closed = s.closed();
+  out.manifold = s.nonmanifold_edges == 0;
+  if (p.compute_hausdorff) {
+    TriangleSoup cell;
+    boundary_triangles(*out.complex, all, Vec3{}, cell.vertices, cell.triangles);
+    const double step = std::max(out.box.diagonal() * p.hausdorff_error * 10, out.cell_size / 2);
+    const HausdorffResult h = hausdorff(tris, cell, step);
+    out.hausdorff = h.symmetric;
+    out.hausdorff_in_to_cell = h.a_to_b;
+    out.hausdorff_cell_to_in = h.b_to_a;
+    out.mean_distance = h.mean_a_to_b;
+  }
+  out.seconds = seconds_since(t0);
+  return out;
+}
+
+}  // namespace mc

@@ -1,0 +1,59 @@
+// Preprocessing: rebuild a building as one watertight singleton cell (algorithm.md §2–§3).
+//
+// clean soup -> centre (and rotate to z-up) -> plane segmentation -> plane registry ->
+// Embree oracle -> iterative space carving of a convex cell complex -> interior cells,
+// grouped into face-connected components (each is its own singleton cell; none is dropped
+// unless it is below `min_component_fraction`, and drops are reported) -> fidelity (Hausdorff).
+#pragma once
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/complex.hpp"
+#include "core/params.hpp"
+#include "core/plane.hpp"
+#include "core/polygon_mesh.hpp"
+
+namespace mc {
+
+using Clock = std::chrono::steady_clock;
+
+struct SingletonComponent {
+  std::vector<uint32_t> cells;  // live interior cells, ascending
+  double volume = 0;
+};
+
+struct Preprocessed {
+  // Frame: complex coordinates c map to input coordinates by from_z_up(c + offset, up_axis).
+  Vec3 offset;
+  int up_axis = 2;
+  double cell_size = 0, dist = 0;
+  double angle_rad = 0;  // θa (plane classes, candidate snapping)
+  BBox box;  // bounding box of the centred, z-up input (A_diag, snapping)
+  PlaneRegistry planes;
+  std::unique_ptr<CellComplex> complex;
+  std::vector<SingletonComponent> components;  // largest first
+  std::vector<int32_t> plane_label;            // per plane id: semantic label index or -1
+  std::vector<std::string> labels;             // label names (input labels)
+  // Statistics.
+  size_t input_faces = 0, regions = 0, cells = 0, inside_cells = 0, oracle_points = 0;
+  size_t dropped_components = 0;
+  double dropped_volume = 0;
+  double hausdorff = -1, hausdorff_in_to_cell = -1, hausdorff_cell_to_in = -1, mean_distance = -1;
+  bool closed = false, manifold = false;
+  bool truncated = false;
+  double seconds = 0;
+  std::vector<std::string> problems;
+
+  Vec3 to_input(const Vec3& p) const;  // complex -> input coordinates
+  int32_t label_of_plane(uint32_t plane) const {
+    return plane < plane_label.size() ? plane_label[plane] : -1;
+  }
+};
+
+// Throws std::runtime_error with a clear reason when no cell can be built (empty or degenerate
+// input, nothing inside).
+Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline);
+
+}  // namespace mc

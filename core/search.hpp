@@ -1,0 +1,42 @@
+// Best-first branch and bound over cutting planes (algorithm.md §6.2–§6.6).
+//
+// Nodes are sets of parts (ids into a per-search arena of analysed parts, deduplicated by
+// cell bitset); splits are memoised per (part, plane). The cost f = g + σ·h is a sum over
+// parts, so each child's cost is known from per-part values before the child is built, and
+// only the best `max_children` combinations of an expansion are enumerated (lazily, in cost
+// order). Ties break on (cost, h, creation order), so the search is deterministic.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/part.hpp"
+#include "core/preprocess.hpp"
+
+namespace mc {
+
+struct SearchInput {
+  const CellSpace* space = nullptr;
+  std::vector<uint32_t> pool;        // candidate planes the space was refined by
+  std::vector<Bits> positive;        // per pool plane: cells on its positive side
+  AnalysisContext ctx;
+  Clock::time_point deadline;
+};
+
+struct SearchResult {
+  std::vector<PartInfo> parts;
+  double cost = 0, g = 0, h = 0;
+  int64_t expanded = 0;
+  bool deadline_hit = false;
+  bool budget_hit = false;
+};
+
+// Objective of a node (paper Eq. 3, 5, 6) for normalisers N_max = e_root + 1 and Δ0.
+struct Objective {
+  double n_max = 1, delta0 = 1, sigma = 2, k = 4;
+  double g(size_t parts, double sum_delta) const { return parts / n_max + (delta0 - sum_delta) / delta0; }
+  double h(double sum_e, double sum_delta) const { return sum_e / (k * n_max) + sum_delta / delta0; }
+};
+
+SearchResult search(const SearchInput& in, const PartInfo& root);
+
+}  // namespace mc

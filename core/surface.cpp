@@ -1,0 +1,193 @@
+#include "core/surface.hpp"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace mc {
+
+namespace {
+uint64_t directed(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; }
+
+// 2-D projection dropping the dominant axis of `n`, oriented so that CCW about n stays CCW.
+struct Projector {
+  int u, v;
+  explicit Projector(const Vec3& n) {
+    const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+    const int drop = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+    u = (drop + 1) % 3;
+    v = (drop + 2) % 3;
+    if (n[drop] < 0) std::swap(u, v);
+  }
+};
+
+double signed_area_2d(const std::vector<uint32_t>& ring, const CellComplex& cx, const Projector& pr) {
+  double a = 0;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const Vec3& p = cx.point(ring[i]);
+    const Vec3& q = cx.point(ring[(i + 1) % ring.size()]);
+    a += p[pr.u] * q[pr.v] - q[pr.u] * p[pr.v];
+  }
+  return 0.5 * a;
+}
+
+bool point_in_ring(double x, double y, const std::vector<uint32_t>& ring, const CellComplex& cx, const Projector& pr) {
+  bool in = false;
+  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const Vec3& a = cx.point(ring[i]);
+    const Vec3& b = cx.point(ring[j]);
+    if ((a[pr.v] > y) != (b[pr.v] > y)) {
+      const double xi = a[pr.u] + (y - a[pr.v]) * (b[pr.u] - a[pr.u]) / (b[pr.v] - a[pr.v]);
+      if (x < xi) in = !in;
+    }
+  }
+  return in;
+}
+}  // namespace
+
+std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  std::unordered_set<uint32_t> in(cells.begin(), cells.end());
+  std::vector<std::pair<uint32_t, uint32_t>> out;
+  for (uint32_t c : cells) {
+    for (uint32_t f : cx.cell(c).facets) {
+      const uint32_t o = cx.other_side(f, c);
+      if (o == CellComplex::kNone || !in.count(o)) out.emplace_back(f, c);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
+  Surface s;
+  // 1. Directed boundary edges grouped by (plane, outward side); opposite pairs cancel, which
+  //    merges coplanar facets into polygons (the complex is conforming, so edges match exactly).
+  std::map<std::tuple<uint32_t, bool, bool>, std::unordered_map<uint64_t, int>> groups;
+  for (auto [f, c] : boundary_facets(cx, cells)) {
+    const bool plus = cx.facet(f).back == c;
+    const uint32_t other = cx.other_side(f, c);
+    const bool cut = solid && other != CellComplex::kNone && std::binary_search(solid->begin(), solid->end(), other);
+    auto& edges = groups[{cx.facet(f).plane, plus, cut}];
+    const auto loop = cx.outward_loop(f, c);
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+      auto rev = edges.find(directed(b, a));
+      if (rev != edges.end()) {
+        if (--rev->second == 0) edges.erase(rev);
+      } else {
+        ++edges[directed(a, b)];
+      }
+    }
+  }
+  // 2. Chain each group's edges into loops (deterministic: smallest start, smallest next).
+  struct RawFace {
+    uint32_t plane;
+    bool plus, cut;
+    std::vector<std::vector<uint32_t>> loops;
+  };
+  std::vector<RawFace> raw;
+  for (auto& [key, edges] : groups) {
+    std::map<uint32_t, std::vector<uint32_t>> next;
+    for (const auto& [e, n] : edges)
+      for (int i = 0; i < n; ++i) next[uint32_t(e >> 32)].push_back(uint32_t(e & 0xffffffffu));
+    for (auto& [a, bs] : next) std::sort(bs.begin(), bs.end(), std::greater<>());
+    RawFace rf{std::get<0>(key), std::get<1>(key), std::get<2>(key), {}};
+    while (true) {
+      auto it = std::find_if(next.begin(), next.end(), [](const auto& kv) { return !kv.second.empty(); });
+      if (it == next.end()) break;
+      const uint32_t start = it->first;
+      std::vector<uint32_t> loop;
+      uint32_t v = start;
+      while (true) {
+        auto& bs = next[v];
+        if (bs.empty()) break;  // open chain: reported through the edge counts below
+        loop.push_back(v);
+        const uint32_t w = bs.back();
+        bs.pop_back();
+        v = w;
+        if (v == start) break;
+      }
+      if (loop.size() >= 3) rf.loops.push_back(std::move(loop));
+    }
+    raw.push_back(std::move(rf));
+  }
+  // 3. Drop vertices that lie in the middle of a straight edge shared by exactly two faces.
+  std::unordered_map<uint32_t, std::vector<uint32_t>> nbrs;
+  for (const auto& rf : raw)
+    for (const auto& loop : rf.loops)
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+        nbrs[a].push_back(b);
+        nbrs[b].push_back(a);
+      }
+  std::unordered_set<uint32_t> drop;
+  for (auto& [v, ns] : nbrs) {
+    std::sort(ns.begin(), ns.end());
+    ns.erase(std::unique(ns.begin(), ns.end()), ns.end());
+    if (ns.size() == 2 && cx.collinear(ns[0], v, ns[1])) drop.insert(v);
+  }
+  // 4. Outer rings vs holes by orientation about the outward normal; holes go to their outer ring.
+  for (auto& rf : raw) {
+    Vec3 n = cx.planes()[rf.plane].n;
+    if (!rf.plus) n = -n;
+    const Projector pr(n);
+    std::vector<std::vector<uint32_t>> outers, holes;
+    for (auto& loop : rf.loops) {
+      std::vector<uint32_t> kept;
+      for (uint32_t v : loop)
+        if (!drop.count(v)) kept.push_back(v);
+      if (kept.size() < 3) continue;
+      (signed_area_2d(kept, cx, pr) >= 0 ? outers : holes).push_back(std::move(kept));
+    }
+    std::vector<SurfaceFace> faces;
+    for (auto& o : outers) faces.push_back({{std::move(o)}, rf.plane, rf.plus, rf.cut});
+    for (auto& h : holes) {
+      size_t target = 0;
+      if (faces.size() > 1) {
+        const Vec3& p = cx.point(h[0]);
+        for (size_t i = 0; i < faces.size(); ++i)
+          if (point_in_ring(p[pr.u], p[pr.v], faces[i].rings[0], cx, pr)) target = i;
+      }
+      if (!faces.empty()) faces[target].rings.push_back(std::move(h));
+    }
+    for (auto& f : faces) s.faces.push_back(std::move(f));
+  }
+  // 5. Closedness and manifoldness of the merged surface.
+  std::unordered_map<uint64_t, int> uses;
+  for (const auto& f : s.faces)
+    for (const auto& r : f.rings)
+      for (size_t i = 0; i < r.size(); ++i) {
+        uint32_t a = r[i], b = r[(i + 1) % r.size()];
+        uses[directed(std::min(a, b), std::max(a, b))] += a < b ? 1 : 1000;
+      }
+  for (const auto& [e, n] : uses) {
+    const int fwd = n % 1000, bwd = n / 1000;
+    if (fwd != bwd) ++s.boundary_edges;
+    if (fwd + bwd > 2) ++s.nonmanifold_edges;
+  }
+  return s;
+}
+
+void boundary_triangles(const CellComplex& cx, const std::vector<uint32_t>& cells, const Vec3& offset,
+                        std::vector<Vec3>& vertices, std::vector<std::array<uint32_t, 3>>& triangles) {
+  std::unordered_map<uint32_t, uint32_t> remap;
+  auto index = [&](uint32_t v) {
+    auto [it, fresh] = remap.emplace(v, static_cast<uint32_t>(vertices.size()));
+    if (fresh) vertices.push_back(cx.point(v) + offset);
+    return it->second;
+  };
+  for (auto [f, c] : boundary_facets(cx, cells)) {
+    const auto loop = cx.outward_loop(f, c);
+    for (size_t i = 1; i + 1 < loop.size(); ++i) triangles.push_back({index(loop[0]), index(loop[i]), index(loop[i + 1])});
+  }
+}
+
+double surface_volume(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  double v = 0;
+  for (uint32_t c : cells) v += cx.cell_volume(c);
+  return v;
+}
+
+}  // namespace mc

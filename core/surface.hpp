@@ -1,0 +1,73 @@
+// The boundary surface of a set of cells (a singleton cell or a part): its boundary facets,
+// coplanar neighbours merged into polygons with holes, collinear vertices dropped where no other
+// face needs them (architecture.md §2, "the output surface of a part").
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/complex.hpp"
+#include "core/polygon_mesh.hpp"
+
+namespace mc {
+
+struct SurfaceFace {
+  std::vector<std::vector<uint32_t>> rings;  // complex vertex ids; ring 0 outer (CCW seen from outside)
+  uint32_t plane = CellComplex::kNone;       // registry plane the face lies on
+  bool outward_is_plus = true;               // outward normal = +plane normal?
+  bool cut = false;                          // interior face: the other side is in the solid
+};
+
+struct Surface {
+  std::vector<SurfaceFace> faces;
+  size_t boundary_edges = 0;     // edges used once (0 for a closed surface)
+  size_t nonmanifold_edges = 0;  // edges used more than twice
+  bool closed() const { return boundary_edges == 0; }
+};
+
+// Boundary facets of `cells` as (facet id, cell) pairs, outward loops via cx.outward_loop.
+std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx, const std::vector<uint32_t>& cells);
+
+// `solid` (optional, sorted): the enclosing solid's cells; faces whose other side is in it are
+// cut faces (kept apart from coplanar exterior faces when merging).
+Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells,
+                        const std::vector<uint32_t>* solid = nullptr);
+
+// Converts a surface to a PolygonMesh in double coordinates shifted by `offset`.
+// `label_of_face(const SurfaceFace&)` gives each face its semantic label index (or -1).
+template <class LabelFn>
+PolygonMesh to_polygon_mesh(const CellComplex& cx, const Surface& s, const Vec3& offset, LabelFn label_of_face);
+
+// Triangles of the boundary facets (fans of convex facets), for measurements (Hausdorff, volume).
+void boundary_triangles(const CellComplex& cx, const std::vector<uint32_t>& cells, const Vec3& offset,
+                        std::vector<Vec3>& vertices, std::vector<std::array<uint32_t, 3>>& triangles);
+
+double surface_volume(const CellComplex& cx, const std::vector<uint32_t>& cells);
+
+// ---- template implementation ----
+template <class LabelFn>
+PolygonMesh to_polygon_mesh(const CellComplex& cx, const Surface& s, const Vec3& offset, LabelFn label_of_face) {
+  PolygonMesh m;
+  std::vector<uint32_t> remap;
+  auto index = [&](uint32_t v) {
+    if (remap.size() <= v) remap.resize(v + 1, UINT32_MAX);
+    if (remap[v] == UINT32_MAX) {
+      remap[v] = static_cast<uint32_t>(m.vertices.size());
+      m.vertices.push_back(cx.point(v) + offset);
+    }
+    return remap[v];
+  };
+  for (const SurfaceFace& f : s.faces) {
+    Polygon p;
+    for (const auto& ring : f.rings) {
+      std::vector<uint32_t> r;
+      r.reserve(ring.size());
+      for (uint32_t v : ring) r.push_back(index(v));
+      p.rings.push_back(std::move(r));
+    }
+    p.semantic = label_of_face(f);
+    m.faces.push_back(std::move(p));
+  }
+  return m;
+}
+
+}  // namespace mc

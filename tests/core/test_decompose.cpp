@@ -1,0 +1,129 @@
+#include "core/decompose.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <tuple>
+
+#include "buildings.hpp"
+
+namespace mc {
+namespace {
+
+struct Outcome {
+  Preprocessed pre;
+  Decomposition dec;
+};
+
+Outcome run(const PolygonMesh& m, double cell = 0.5) {
+  PreprocessParams pp;
+  pp.cell_size = cell;
+  pp.dist_thresh = cell / 4;
+  pp.compute_hausdorff = false;
+  DecomposeParams dp;
+  const auto deadline = Clock::now() + std::chrono::seconds(120);
+  Outcome r{preprocess(m, pp, deadline), {}};
+  r.dec = decompose(r.pre, dp, deadline);
+  return r;
+}
+
+using Key = std::tuple<double, double, double>;
+Key key(const Vec3& v) { return {std::round(v.x * 1e6), std::round(v.y * 1e6), std::round(v.z * 1e6)}; }
+
+// Every edge of a closed, oriented polygon surface is used once in each direction.
+void expect_closed(const PolygonMesh& m) {
+  std::map<std::pair<Key, Key>, int> edges;
+  for (const auto& f : m.faces)
+    for (const auto& r : f.rings)
+      for (size_t i = 0; i < r.size(); ++i) edges[{key(m.vertices[r[i]]), key(m.vertices[r[(i + 1) % r.size()]])}]++;
+  for (const auto& [e, n] : edges) {
+    EXPECT_EQ(n, 1);
+    EXPECT_EQ(edges.count({e.second, e.first}), 1u);
+  }
+}
+
+double mesh_volume(const PolygonMesh& m) {
+  double v = 0;
+  for (const auto& f : m.faces)
+    for (const auto& r : f.rings)
+      for (size_t i = 1; i + 1 < r.size(); ++i)
+        v += dot(m.vertices[r[0]], cross(m.vertices[r[i]], m.vertices[r[i + 1]])) / 6.0;
+  return v;
+}
+
+void expect_valid_levels(const Outcome& r, double volume) {
+  ASSERT_FALSE(r.dec.levels.empty());
+  for (const auto& level : r.dec.levels) {
+    double sum = 0;
+    for (const auto& part : level.parts) {
+      sum += part.volume;
+      const PolygonMesh m = part_mesh(r.pre, part);
+      expect_closed(m);
+      EXPECT_NEAR(mesh_volume(m), part.volume, 1e-6 * volume);
+    }
+    EXPECT_NEAR(sum, volume, 1e-9 * volume);  // parts tile the singleton cell
+  }
+}
+
+TEST(Decompose, BoxGivesOnePart) {
+  const Outcome r = run(test::box_building());
+  ASSERT_EQ(r.pre.components.size(), 1u);
+  EXPECT_NEAR(r.pre.components[0].volume, 300.0, 1e-6);
+  EXPECT_EQ(r.dec.concave_edges, 0);
+  EXPECT_EQ(r.dec.levels.back().parts.size(), 1u);
+  EXPECT_NEAR(r.dec.levels.back().convexity, 1.0, 1e-9);
+  expect_valid_levels(r, 300.0);
+}
+
+TEST(Decompose, LShapeGivesTwoConvexParts) {
+  const Outcome r = run(test::l_building());
+  const double vol = (12 * 5 + 5 * 7) * 6.0;
+  EXPECT_NEAR(r.pre.components[0].volume, vol, 1e-6);
+  EXPECT_EQ(r.dec.concave_edges, 1);
+  EXPECT_EQ(r.dec.levels.back().parts.size(), 2u);
+  EXPECT_NEAR(r.dec.levels.back().min_convexity, 1.0, 1e-9);
+  expect_valid_levels(r, vol);
+}
+
+TEST(Decompose, UShapeGivesThreeConvexParts) {
+  const Outcome r = run(test::u_building());
+  const double vol = (15 * 5 + 2 * 5 * 7) * 6.0;
+  EXPECT_EQ(r.dec.concave_edges, 2);
+  EXPECT_EQ(r.dec.levels.back().parts.size(), 3u);
+  EXPECT_NEAR(r.dec.levels.back().min_convexity, 1.0, 1e-9);
+  expect_valid_levels(r, vol);
+}
+
+TEST(Decompose, CourtyardRingDecomposesIntoConvexParts) {
+  const Outcome r = run(test::courtyard_building());
+  const double vol = (16 * 16 - 6 * 6) * 6.0;
+  EXPECT_NEAR(r.pre.components[0].volume, vol, 1e-6);
+  EXPECT_EQ(r.dec.concave_edges, 4);
+  const auto& last = r.dec.levels.back();
+  EXPECT_GE(last.parts.size(), 4u);
+  EXPECT_LE(last.parts.size(), 8u);
+  EXPECT_NEAR(last.min_convexity, 1.0, 1e-9);
+  expect_valid_levels(r, vol);
+}
+
+TEST(Decompose, SteppedTowerSplitsAtTheSetback) {
+  const Outcome r = run(test::stepped_tower());
+  const double vol = 10 * 10 * 4 + 4 * 4 * 8;
+  EXPECT_NEAR(r.pre.components[0].volume, vol, 1e-6);
+  const auto& last = r.dec.levels.back();
+  EXPECT_EQ(last.parts.size(), 2u);
+  EXPECT_NEAR(last.min_convexity, 1.0, 1e-9);
+  expect_valid_levels(r, vol);
+}
+
+TEST(Decompose, CutFacesAreClosureSurfaces) {
+  const Outcome r = run(test::l_building());
+  const PolygonMesh m = part_mesh(r.pre, r.dec.levels.back().parts[0]);
+  int closure = 0;
+  for (const auto& f : m.faces)
+    if (f.semantic >= 0 && m.semantic_labels[f.semantic] == "ClosureSurface") ++closure;
+  EXPECT_EQ(closure, 1);
+}
+
+}  // namespace
+}  // namespace mc
