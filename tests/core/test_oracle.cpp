@@ -1,0 +1,147 @@
+// Inside/outside oracle: closed, open-bottom, flipped and duplicated inputs; shared-edge hits
+// counted once; determinism; throughput on the largest sample.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <random>
+
+#include "core/oracle.hpp"
+#include "core/soup.hpp"
+#include "off_fixture.hpp"
+#include "synthetic_buildings.hpp"
+
+namespace mc {
+namespace {
+
+// Points of the L-prism's bounding box [0,10]x[0,8]x[0,6]: inside the L, or in its notch
+// (x > 4 and y > 4), kept 0.05 away from every face.
+struct Probe {
+  Vec3 p;
+  bool inside;
+};
+std::vector<Probe> l_probes() {
+  std::vector<Probe> out;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> ux(0, 10), uy(0, 8), uz(0, 6);
+  while (out.size() < 2000) {
+    const Vec3 p{ux(rng), uy(rng), uz(rng)};
+    auto near = [](double v, double w) { return std::abs(v - w) < 0.05; };
+    if (near(p.x, 0) || near(p.x, 10) || near(p.x, 4) || near(p.y, 0) || near(p.y, 8) || near(p.y, 4) ||
+        near(p.z, 0) || near(p.z, 6))
+      continue;
+    out.push_back({p, !(p.x > 4 && p.y > 4)});
+  }
+  // And points outside the bounding box, above, below and beside.
+  for (Vec3 p : {Vec3{2, 2, 7}, Vec3{2, 2, -1}, Vec3{-1, 2, 3}, Vec3{11, 2, 3}, Vec3{7, 6, 100}}) out.push_back({p, false});
+  return out;
+}
+
+int misclassified(const PolygonMesh& m, int rays = 7, uint64_t seed = 1) {
+  const InsideOracle oracle(triangulate(m), rays, seed);
+  int wrong = 0;
+  const auto probes = l_probes();
+  for (size_t i = 0; i < probes.size(); ++i) wrong += oracle.inside(probes[i].p, i) != probes[i].inside;
+  return wrong;
+}
+
+TEST(Oracle, ClosedLPrism) { EXPECT_EQ(misclassified(test::l_prism()), 0); }
+
+TEST(Oracle, OpenBottomLPrism) { EXPECT_EQ(misclassified(test::l_prism(false)), 0); }
+
+TEST(Oracle, FlippedAndDuplicatedFaces) {
+  PolygonMesh m = test::as_mesh(triangulate(test::l_prism(false)), test::l_prism(false));
+  for (size_t f = 0; f < m.faces.size(); f += 3) test::flip_face(m, f);
+  const size_t n = m.faces.size();
+  for (size_t f = 0; f < n; f += 2) m.faces.push_back(m.faces[f]);  // coincident duplicates
+  EXPECT_EQ(misclassified(m), 0);
+}
+
+TEST(Oracle, JitteredSoupWithOneRay) {
+  PolygonMesh m = test::explode(test::as_mesh(triangulate(test::l_prism()), test::l_prism()));
+  test::jitter(m, 0.001, 9);  // cracks of up to 2 mm between faces
+  EXPECT_LE(misclassified(m, 1), 10);  // a single ray may slip through a crack
+  EXPECT_EQ(misclassified(m, 7), 0);
+}
+
+TEST(Oracle, SharedEdgesAndVerticesCountOnce) {
+  const TriangleSoup s = triangulate(test::box({0, 0, 0}, {2, 2, 2}));  // quads split on a diagonal
+  const InsideOracle oracle(s, 1, 1);
+  // Straight up through the centre of the top face: that is on the split diagonal.
+  EXPECT_EQ(oracle.count_crossings({1, 1, 1}, {0, 0, 1}), 1);
+  // Through the top face's corner vertex (shared by 2 top triangles and 4 wall triangles).
+  EXPECT_EQ(oracle.count_crossings({1, 1, 1}, normalized(Vec3{1, 1, 1})), 1);
+  // Through a vertical edge between two walls, from outside: in and out.
+  EXPECT_EQ(oracle.count_crossings({-1, -1, 1}, normalized(Vec3{1, 1, 0})), 2);
+  EXPECT_EQ(oracle.count_crossings({1, 1, 3}, {0, 0, 1}), 0);
+}
+
+TEST(Oracle, GableHouseOpenBottom) {
+  const InsideOracle oracle(triangulate(test::gable_house(10, 8, 4, 7, false, false)), 7, 3);
+  EXPECT_TRUE(oracle.inside({5, 4, 6.5}, 0));   // in the attic, under the ridge
+  EXPECT_FALSE(oracle.inside({5, 0.5, 6.5}, 1));  // above the roof slope, inside the bbox
+  EXPECT_TRUE(oracle.inside({0.1, 0.1, 0.1}, 2));
+}
+
+TEST(Oracle, DeterministicAndIndependentOfBatching) {
+  const InsideOracle oracle(triangulate(test::l_prism(false)), 7, 42);
+  std::vector<Vec3> pts;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1, 11);
+  for (int i = 0; i < 20000; ++i) pts.push_back({u(rng), u(rng) * 0.8, u(rng) * 0.6});
+  std::vector<uint8_t> a, b;
+  oracle.classify(pts, 100, a);
+  oracle.classify(pts, 100, b);
+  EXPECT_EQ(a, b);
+  for (size_t i = 0; i < pts.size(); i += 97) EXPECT_EQ(a[i], oracle.inside(pts[i], 100 + i) ? 1 : 0);
+  const InsideOracle again(triangulate(test::l_prism(false)), 7, 42);
+  std::vector<uint8_t> c;
+  again.classify(pts, 100, c);
+  EXPECT_EQ(a, c);
+}
+
+TEST(Oracle, EmptySoupIsOutside) {
+  const InsideOracle oracle(TriangleSoup{}, 7, 1);
+  EXPECT_FALSE(oracle.inside({0, 0, 0}, 0));
+}
+
+// Georeferenced coordinates (~8e5) must not break the float ray caster.
+TEST(Oracle, LargeCoordinates) {
+  PolygonMesh m = test::l_prism(false);
+  translate(m, {835000, 815000, 30});
+  const InsideOracle oracle(triangulate(m), 7, 1);
+  EXPECT_TRUE(oracle.inside({835001, 815001, 31}, 0));
+  EXPECT_FALSE(oracle.inside({835007, 815006, 31}, 1));
+}
+
+TEST(Oracle, SamplesThroughput) {
+  const auto all = test::samples();
+  ASSERT_GE(all.size(), 16u);
+  for (const auto& s : all) {
+    if (s.name != "sample17" && s.name != "sample2") continue;  // largest and a small house
+    PolygonMesh m = clean_soup(test::load_off(s.off.string()), 1e-6, nullptr);
+    translate(m, -bbox_center(m));
+    const TriangleSoup soup = triangulate(m);
+    const auto t0 = std::chrono::steady_clock::now();
+    const InsideOracle oracle(soup, 7, 1);
+    const auto t1 = std::chrono::steady_clock::now();
+    std::vector<Vec3> pts;
+    std::mt19937_64 rng(2);
+    const BBox& b = oracle.bbox();
+    std::uniform_real_distribution<double> ux(b.lo.x, b.hi.x), uy(b.lo.y, b.hi.y), uz(b.lo.z, b.hi.z);
+    for (int i = 0; i < 200000; ++i) pts.push_back({ux(rng), uy(rng), uz(rng)});
+    std::vector<uint8_t> in;
+    oracle.classify(pts, 0, in);
+    const auto t2 = std::chrono::steady_clock::now();
+    const double frac = std::count(in.begin(), in.end(), 1) / double(in.size());
+    // A building fills a sizeable but partial share of its bounding box.
+    EXPECT_GT(frac, 0.05) << s.name;
+    EXPECT_LT(frac, 0.95) << s.name;
+    const double secs = std::chrono::duration<double>(t2 - t1).count();
+    std::printf("[ oracle   ] %s: %zu triangles, build %.1f ms, %.0f points/s (7 rays), inside %.3f\n", s.name.c_str(),
+                soup.triangles.size(), std::chrono::duration<double, std::milli>(t1 - t0).count(), pts.size() / secs,
+                frac);
+  }
+}
+
+}  // namespace
+}  // namespace mc
