@@ -180,7 +180,7 @@ class Assembler {
       mc::Vec3 p;
       int64_t key;
       if (!resolve(idx, p, key)) {
-        why = idx < 0 ? "has an invalid vertex reference " + e.dump()
+        why = idx < 0 ? "refers to a vertex that could not be read (" + e.dump() + ")"
                       : "has vertex index " + std::to_string(idx) + " out of range";
         return {};
       }
