@@ -1,0 +1,337 @@
+#include "pipeline/job.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <sstream>
+
+#include "core/decompose.hpp"
+#include "core/hull.hpp"
+#include "core/preprocess.hpp"
+#include "io/cityjson_building.hpp"
+#include "io/cityjson_common.hpp"
+#include "pipeline/measures.hpp"
+#include "pipeline/part_objects.hpp"
+
+namespace mc::pipeline {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr size_t kMaxProblems = 20;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string part_id(const std::string& building, size_t level, size_t index) {
+  return building + "-mc" + std::to_string(level) + "-" + std::to_string(index);
+}
+
+void add_problems(std::vector<std::string>& out, const std::vector<std::string>& in) {
+  for (const auto& p : in) {
+    if (out.size() >= kMaxProblems) break;
+    out.push_back(p);
+  }
+}
+
+// Everything one written level contributes, staged before it touches the feature, so that a
+// failure half-way leaves the input exactly as it was.
+struct StagedPart {
+  std::string id;
+  json object;
+};
+
+struct LevelSource {
+  const LevelResult* result = nullptr;  // null = the singleton components as parts
+  std::string fallback;
+};
+
+// Which result stands in for level i (architecture.md §1: best complete result so far).
+LevelSource source_for(const Decomposition& d, size_t i) {
+  if (i < d.levels.size()) return {&d.levels[i], ""};
+  if (!d.levels.empty()) return {&d.levels.back(), "previous level"};
+  return {nullptr, "singleton"};
+}
+
+std::vector<PartResult> singleton_parts(const Preprocessed& pre) {
+  std::vector<PartResult> parts;
+  for (size_t c = 0; c < pre.components.size(); ++c) {
+    PartResult r;
+    r.cells = pre.components[c].cells;
+    r.volume = pre.components[c].volume;
+    r.component = static_cast<int>(c);
+    parts.push_back(std::move(r));
+  }
+  return parts;
+}
+
+std::string fmt_seconds(double s) {
+  std::ostringstream o;
+  o << s;
+  return o.str();
+}
+
+std::string lods_text(const std::vector<std::string>& lods) {
+  std::string s;
+  for (const auto& l : lods) s += (s.empty() ? "" : ", ") + l;
+  return s.empty() ? "none" : s;
+}
+
+json& attributes_of(json& obj) {
+  if (!obj.contains("attributes") || !obj["attributes"].is_object()) obj["attributes"] = json::object();
+  return obj["attributes"];
+}
+
+void set_status_attributes(BuildingOutcome& out) {
+  auto it = out.feature.objects.find(out.id);
+  if (it == out.feature.objects.end() || !it->is_object()) return;
+  json& a = attributes_of(*it);
+  a["morphcut_status"] = out.status;
+  if (!out.reason.empty()) a["morphcut_reason"] = out.reason;
+  if (!out.levels.empty()) {
+    json parts = json::array(), levels = json::array();
+    for (const auto& l : out.levels) {
+      parts.push_back(l.parts);
+      levels.push_back(l.threshold);
+    }
+    a["morphcut_parts"] = parts;
+    a["morphcut_levels"] = levels;
+  }
+  if (std::isfinite(out.hausdorff)) a["morphcut_hausdorff"] = out.hausdorff;
+}
+
+// The decomposing part of the job; throws on failure (the caller turns that into "failed").
+void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, const mc::io::Header& h,
+                        const Params& p, const RunConfig& rc) {
+  const auto start = Clock::now();
+  const auto deadline = p.timeout_s > 0
+                            ? start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(p.timeout_s))
+                            : Clock::time_point::max();
+  auto t = Clock::now();
+  Preprocessed pre = preprocess(in.mesh, p.pre, deadline);
+  out.time.preprocess = since(t);
+  out.size.input_faces = pre.input_faces;
+  out.size.regions = pre.regions;
+  out.size.planes = pre.planes.size();
+  out.size.cells = pre.cells;
+  out.size.inside_cells = pre.inside_cells;
+  out.size.components = pre.components.size();
+  out.size.dropped_components = pre.dropped_components;
+  if (pre.hausdorff >= 0) out.hausdorff = pre.hausdorff;
+  add_problems(out.problems, pre.problems);
+  if (pre.components.empty()) throw std::runtime_error("preprocessing produced no interior cells");
+
+  t = Clock::now();
+  Decomposition dec = decompose(pre, p.dec, deadline);
+  out.time.decompose = since(t);
+  out.size.concave_edges = dec.concave_edges;
+
+  t = Clock::now();
+  const mc::io::Transform transform = mc::io::parse_transform(h.root, "header");
+  const std::string lod = in.lod.empty() ? std::string("2") : in.lod;
+  std::vector<Vec3> new_vertices;
+  VertexPool pool(new_vertices, transform);
+  std::vector<StagedPart> staged;
+  std::vector<PolygonMesh> first_level_meshes;
+  std::vector<Vec3> all_points;
+  const std::vector<PartResult> singleton = singleton_parts(pre);
+  bool fell_back = false;
+  for (size_t i = 0; i < p.dec.levels.size(); ++i) {
+    if (!writes_level(rc, i)) continue;
+    const LevelSource src = source_for(dec, i);
+    const std::vector<PartResult>& parts = src.result ? src.result->parts : singleton;
+    if (parts.empty()) throw std::runtime_error("level " + std::to_string(i) + " has no parts");
+    LevelOutcome lv;
+    lv.index = i;
+    lv.threshold = p.dec.levels[i];
+    lv.parts = parts.size();
+    lv.fallback = src.fallback;
+    fell_back = fell_back || !src.fallback.empty();
+    if (src.result && src.fallback.empty()) {
+      const LevelResult& r = *src.result;
+      lv.convexity = r.convexity;
+      lv.mean_convexity = r.mean_convexity;
+      lv.min_convexity = r.min_convexity;
+      lv.cost = r.cost, lv.g = r.g, lv.h = r.h;
+      lv.remaining_concave = r.remaining_concave;
+      lv.nodes_expanded = r.nodes_expanded;
+      lv.seconds = r.seconds;
+      lv.truncated = r.truncated;
+    }
+    const bool record_meshes = first_level_meshes.empty();
+    double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
+    for (size_t j = 0; j < parts.size(); ++j) {
+      const PartResult& part = parts[j];
+      PolygonMesh mesh = part_mesh(pre, part);
+      double hull_volume = part.hull_volume;
+      if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton fallback
+      const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
+      EncodedSolid solid = encode_solid(mesh, lod, h.version, pool);
+      if (const std::string defect = closed_shell_defect(solid.shell); !defect.empty())
+        throw std::runtime_error("part " + part_id(out.id, i, j) + " is not a closed solid: " + defect);
+      out.size.dropped_faces += solid.dropped_faces;
+      json neighbours = json::array();
+      for (uint32_t n : part.neighbours) neighbours.push_back(part_id(out.id, i, n));
+      const int degree = static_cast<int>(part.neighbours.size());
+      lv.max_degree = std::max(lv.max_degree, degree);
+      lv.end_parts += degree == 1;
+      total_volume += part.volume;
+      largest = std::max(largest, part.volume);
+      weighted_cvx += convexity * part.volume;
+      sum_cvx += convexity;
+      min_cvx = std::min(min_cvx, convexity);
+      json obj = {{"type", "BuildingPart"},
+                  {"parents", json::array({out.id})},
+                  {"attributes",
+                   {{"morphcut_level", lv.threshold},
+                    {"morphcut_index", j},
+                    {"volume", part.volume},
+                    {"convexity", convexity},
+                    {"neighbours", neighbours}}},
+                  {"geometry", json::array({std::move(solid.geometry)})}};
+      staged.push_back({part_id(out.id, i, j), std::move(obj)});
+      if (record_meshes) {
+        all_points.insert(all_points.end(), mesh.vertices.begin(), mesh.vertices.end());
+        first_level_meshes.push_back(std::move(mesh));
+      }
+    }
+    if (total_volume > 0) lv.largest_share = largest / total_volume;
+    if (!src.fallback.empty() || !std::isfinite(lv.convexity)) {
+      // Not searched: measure the parts we are actually writing.
+      lv.convexity = total_volume > 0 ? weighted_cvx / total_volume : 0.0;
+      lv.mean_convexity = sum_cvx / static_cast<double>(parts.size());
+      lv.min_convexity = min_cvx;
+    }
+    out.levels.push_back(std::move(lv));
+  }
+
+  // Whole building: volume, convexity against the hull of all part vertices (= the singleton's
+  // hull, every singleton vertex being a part vertex), volume centroid.
+  double volume = 0;
+  for (const auto& c : pre.components) volume += c.volume;
+  out.measures.volume = volume;
+  const double hull = convex_hull(all_points).volume;
+  if (hull > 0) out.measures.convexity = std::min(1.0, volume / hull);
+  const VolumeCentroid vc = volume_centroid(first_level_meshes);
+  if (vc.volume > 0) {
+    out.measures.centroid = vc.centroid;
+    out.measures.centroid_method = "solid";
+  }
+
+  // Commit: nothing below throws on valid JSON objects.
+  for (const auto& s : staged)
+    if (out.feature.objects.contains(s.id)) throw std::runtime_error("object id " + s.id + " already exists");
+  const int64_t base = static_cast<int64_t>(out.feature.vertices.size());
+  for (auto& s : staged) {
+    auto& geom = s.object["geometry"][0]["boundaries"];
+    for (auto& shell : geom)
+      for (auto& surface : shell)
+        for (auto& ring : surface)
+          for (auto& v : ring) v = v.get<int64_t>() + base;
+  }
+  out.feature.vertices.insert(out.feature.vertices.end(), new_vertices.begin(), new_vertices.end());
+  json& building = out.feature.objects[out.id];
+  if (!building.contains("children") || !building["children"].is_array()) building["children"] = json::array();
+  for (auto& s : staged) {
+    building["children"].push_back(s.id);
+    out.feature.objects[s.id] = std::move(s.object);
+  }
+  out.size.parts_written = staged.size();
+  out.size.output_vertices_added = new_vertices.size();
+  out.time.encode = since(t);
+
+  const bool truncated_pre = pre.truncated;
+  if (dec.partial || truncated_pre || fell_back) {
+    out.status = "partial";
+    if (!dec.reason.empty()) out.reason = dec.reason;
+    else if (truncated_pre) out.reason = "deadline (timeout_s=" + fmt_seconds(p.timeout_s) + ") reached during preprocessing";
+    else out.reason = "deadline (timeout_s=" + fmt_seconds(p.timeout_s) + ") reached before the last level";
+  } else {
+    out.status = "ok";
+  }
+}
+
+}  // namespace
+
+size_t strip_previous_parts(mc::io::Feature& f) {
+  auto b = f.objects.find(f.id);
+  if (b == f.objects.end() || !b->is_object()) return 0;
+  size_t removed = 0;
+  if (auto ch = b->find("children"); ch != b->end() && ch->is_array()) {
+    json kept = json::array();
+    for (const auto& c : *ch) {
+      auto obj = c.is_string() ? f.objects.find(c.get<std::string>()) : f.objects.end();
+      const bool ours = obj != f.objects.end() && obj->is_object() && obj->contains("attributes") &&
+                        (*obj)["attributes"].is_object() && (*obj)["attributes"].contains("morphcut_level");
+      if (ours) {
+        f.objects.erase(obj);
+        ++removed;
+      } else {
+        kept.push_back(c);
+      }
+    }
+    *ch = std::move(kept);
+  }
+  if (auto a = b->find("attributes"); a != b->end() && a->is_object())
+    for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff"})
+      a->erase(k);
+  return removed;
+}
+
+BuildingOutcome run_building(const mc::io::Feature& f, const mc::io::Header& h, const Params& p,
+                             const RunConfig& rc) {
+  return run_building(mc::io::Feature(f), h, p, rc);
+}
+
+BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const Params& p, const RunConfig& rc) {
+  const auto start = Clock::now();
+  BuildingOutcome out;
+  out.id = f.id;
+  out.is_building = mc::io::is_building(f);
+  out.feature = std::move(f);
+  if (!out.is_building) return out;
+  try {
+    strip_previous_parts(out.feature);
+    auto t = Clock::now();
+    mc::io::BuildingInput in = mc::io::extract_building(out.feature, h, rc.lod);
+    out.time.extract = since(t);
+    out.lod = in.lod;
+    add_problems(out.problems, in.problems);
+    out.size.input_vertices = in.mesh.vertices.size();
+    out.size.input_faces = in.mesh.faces.size();
+    if (in.mesh.empty()) {
+      out.status = "skipped";
+      out.reason = rc.lod == "highest"
+                       ? "no surface geometry"
+                       : "no surface geometry at LoD " + rc.lod + " (available: " +
+                             lods_text(mc::io::building_lods(out.feature, h)) + ")";
+      if (!in.problems.empty()) out.reason += "; " + in.problems.front();
+    } else {
+      out.measures.height = height(in.mesh);
+      const Footprint fp = footprint(in.mesh);
+      out.measures.footprint_area = fp.area;
+      out.measures.footprint_method = fp.method;
+      if (auto c = bbox_centre(in.mesh)) {
+        out.measures.centroid = *c;
+        out.measures.centroid_method = "bbox";
+      }
+      decompose_building(out, in, h, p, rc);
+    }
+  } catch (const std::exception& e) {
+    out.status = "failed";
+    out.reason = e.what();
+  } catch (...) {
+    out.status = "failed";
+    out.reason = "unknown exception";
+  }
+  if (out.status == "failed") {
+    out.levels.clear();
+    out.size.parts_written = 0;
+  }
+  set_status_attributes(out);
+  out.time.job = since(start);
+  return out;
+}
+
+}  // namespace mc::pipeline

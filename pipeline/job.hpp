@@ -1,0 +1,29 @@
+// One building, start to finish: extraction at the configured LoD, preprocessing and
+// decomposition under the per-building deadline, parts written into the feature.
+// Never throws: every failure becomes a status with its reason (architecture.md §1), so one bad
+// building cannot stop a city.
+#pragma once
+#include "config/run_config.hpp"
+#include "core/params.hpp"
+#include "io/cityjson_types.hpp"
+#include "pipeline/outcome.hpp"
+
+namespace mc::pipeline {
+
+// Statuses, in report order.
+inline constexpr const char* kStatuses[] = {"ok", "partial", "failed", "skipped"};
+
+// Non-building features come back untouched with is_building = false. A building comes back
+// with its BuildingParts (architecture.md §4) and morphcut_* attributes; when the job fails or
+// is skipped the input geometry is kept exactly, only the status attributes are added.
+BuildingOutcome run_building(const mc::io::Feature& f, const mc::io::Header& h, const Params& p,
+                             const RunConfig& rc);
+// Same, taking the feature by value (the pipeline moves it through, no copy).
+BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const Params& p, const RunConfig& rc);
+
+// Removes BuildingParts and attributes a previous morphcut run added, so that running on an
+// output is the same as running on its input (parts are recognised by `morphcut_level`).
+// Returns the number of objects removed.
+size_t strip_previous_parts(mc::io::Feature& f);
+
+}  // namespace mc::pipeline

@@ -1,0 +1,85 @@
+#include "pipeline/part_objects.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+namespace mc::pipeline {
+
+using nlohmann::json;
+
+int64_t VertexPool::add(const Vec3& v) {
+  // Grid coordinates: the integers the writer will emit (or the exact doubles without transform).
+  const double s[3] = {t_.scale.x, t_.scale.y, t_.scale.z}, o[3] = {t_.translate.x, t_.translate.y, t_.translate.z};
+  const double c[3] = {v.x, v.y, v.z};
+  int64_t q[3];
+  Vec3 snapped = v;
+  if (t_.present) {
+    double r[3];
+    for (int i = 0; i < 3; ++i) {
+      q[i] = std::llround((c[i] - o[i]) / s[i]);
+      r[i] = static_cast<double>(q[i]) * s[i] + o[i];
+    }
+    snapped = {r[0], r[1], r[2]};
+  } else {
+    // No transform: dedupe exact duplicates only (bit patterns of the doubles).
+    for (int i = 0; i < 3; ++i) {
+      double d = c[i] == 0 ? 0.0 : c[i];
+      std::memcpy(&q[i], &d, sizeof d);
+    }
+  }
+  auto [it, fresh] = index_.try_emplace({q[0], q[1], q[2]}, static_cast<int64_t>(out_.size()));
+  if (fresh) out_.push_back(snapped);
+  return it->second;
+}
+
+EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const std::string& version,
+                          VertexPool& pool) {
+  EncodedSolid out;
+  std::vector<int64_t> vid(part.vertices.size(), -1);
+  auto id_of = [&](uint32_t v) {
+    if (vid[v] < 0) vid[v] = pool.add(part.vertices[v]);
+    return vid[v];
+  };
+  json surfaces = json::array(), values = json::array(), boundaries = json::array();
+  std::vector<int> surface_of_label(part.semantic_labels.size(), -1);
+  for (const Polygon& f : part.faces) {
+    std::vector<std::vector<int64_t>> rings;
+    for (size_t r = 0; r < f.rings.size(); ++r) {
+      std::vector<int64_t> ring;
+      for (uint32_t v : f.rings[r]) {
+        if (v >= part.vertices.size()) throw std::runtime_error("part mesh refers to a missing vertex");
+        const int64_t g = id_of(v);
+        if (ring.empty() || ring.back() != g) ring.push_back(g);
+      }
+      while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+      if (ring.size() >= 3) rings.push_back(std::move(ring));
+      else if (r == 0) break;  // the outer ring collapsed: the whole face is gone
+    }
+    if (rings.empty()) {
+      ++out.dropped_faces;
+      continue;
+    }
+    json value = nullptr;
+    if (f.semantic >= 0 && static_cast<size_t>(f.semantic) < part.semantic_labels.size()) {
+      int& s = surface_of_label[f.semantic];
+      if (s < 0) {
+        s = static_cast<int>(surfaces.size());
+        surfaces.push_back({{"type", part.semantic_labels[f.semantic]}});
+      }
+      value = s;
+    }
+    values.push_back(value);
+    boundaries.push_back(rings);
+    out.shell.push_back(std::move(rings));
+  }
+  out.geometry = {{"type", "Solid"}};
+  if (version == "1.0") out.geometry["lod"] = std::strtod(lod.c_str(), nullptr);
+  else out.geometry["lod"] = lod;
+  out.geometry["boundaries"] = json::array({boundaries});
+  if (!surfaces.empty()) out.geometry["semantics"] = {{"surfaces", surfaces}, {"values", json::array({values})}};
+  return out;
+}
+
+}  // namespace mc::pipeline

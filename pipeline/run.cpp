@@ -1,0 +1,302 @@
+#include "pipeline/run.hpp"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <tbb/flow_graph.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "config/config.hpp"
+#include "io/cityjson.hpp"
+#include "io/crs.hpp"
+#include "io/temp_registry.hpp"
+#include "pipeline/interrupt.hpp"
+#include "pipeline/job.hpp"
+#include "pipeline/progress.hpp"
+#include "pipeline/report.hpp"
+#include "pipeline/sha256.hpp"
+#include "pipeline/summary_csv.hpp"
+
+namespace mc::pipeline {
+
+using nlohmann::json;
+using SteadyClock = std::chrono::steady_clock;
+
+namespace {
+
+double since(SteadyClock::time_point t0) {
+  return std::chrono::duration<double>(SteadyClock::now() - t0).count();
+}
+
+struct Work {
+  size_t sequence = 0;
+  double read_seconds = 0;
+  mc::io::Feature feature;
+  BuildingOutcome outcome;
+};
+using Msg = std::shared_ptr<Work>;
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Features in a CityJSONSeq file = non-empty lines after the first; for the progress bar only.
+std::optional<size_t> count_sequence_features(const std::string& path) {
+  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) return std::nullopt;
+  size_t lines = 0;
+  bool content = false;
+  std::vector<char> buf(1 << 20);
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), f.get())) > 0)
+    for (size_t i = 0; i < n; ++i) {
+      if (buf[i] == '\n') {
+        lines += content;
+        content = false;
+      } else if (buf[i] != ' ' && buf[i] != '\r' && buf[i] != '\t') {
+        content = true;
+      }
+    }
+  lines += content;
+  return lines > 0 ? std::optional<size_t>(lines - 1) : std::nullopt;
+}
+
+// After a signal, in-flight jobs cannot be cancelled (core only knows deadlines); give them a
+// grace period, then leave without outputs (temp files are unlinked first).
+class InterruptWatchdog {
+ public:
+  explicit InterruptWatchdog(double grace_s) : grace_(grace_s), thread_([this] { loop(); }) {}
+  ~InterruptWatchdog() {
+    {
+      std::lock_guard lock(m_);
+      done_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  void loop() {
+    std::unique_lock lock(m_);
+    std::optional<SteadyClock::time_point> since_signal;
+    while (!done_) {
+      cv_.wait_for(lock, std::chrono::milliseconds(50));
+      if (done_) break;
+      if (const int sig = interrupt_signal()) {
+        if (!since_signal) since_signal = SteadyClock::now();
+        if (since(*since_signal) > grace_) {
+          mc::io::unlink_registered_temp_files();
+          std::fprintf(stderr, "\nmorphcut-city: interrupted; buildings still running were abandoned\n");
+          _exit(128 + sig);
+        }
+      }
+    }
+  }
+  double grace_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+}  // namespace
+
+int RunResult::exit_code() const {
+  if (interrupted) return 128 + interrupted;
+  auto get = [&](const char* s) {
+    auto it = counts.find(s);
+    return it == counts.end() ? size_t(0) : it->second;
+  };
+  return get("failed") + get("partial") > 0 ? 1 : 0;
+}
+
+int resolve_threads(int requested) {
+  return requested > 0 ? requested : std::max(1, tbb::info::default_concurrency());
+}
+
+RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig& rc) {
+  const auto start = SteadyClock::now();
+  if (opt.handle_signals) install_interrupt_handlers();
+  RunResult res;
+  for (const char* s : kStatuses) res.counts[s] = 0;
+  res.threads = resolve_threads(params.threads);
+  res.in_flight = effective_in_flight(rc, res.threads);
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(res.threads));
+
+  // The input hash runs beside the buildings (the only other reader of the file).
+  std::future<std::string> hash;
+  // It gives up on an interrupt, so that stopping never waits for a gigabyte to be hashed.
+  if (opt.input != "-")
+    hash = std::async(std::launch::async, [p = opt.input] {
+      std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(p.c_str(), "rb"), &std::fclose);
+      if (!f) return std::string();
+      Sha256 sha;
+      std::vector<char> buf(1 << 20);
+      size_t n;
+      while ((n = std::fread(buf.data(), 1, buf.size(), f.get())) > 0) {
+        if (interrupt_signal()) return std::string();
+        sha.update(buf.data(), n);
+      }
+      return std::ferror(f.get()) ? std::string() : sha.hex();
+    });
+
+  mc::io::CityJsonReader reader(opt.input);
+  const mc::io::Header header = reader.header();
+  const mc::io::CrsTransformer crs(header.crs);
+
+  // All outputs are opened first, so a bad path fails before any work is done.
+  mc::io::CityJsonWriter writer(opt.output, header);
+  std::vector<double> written_levels;
+  for (size_t i = 0; i < params.dec.levels.size(); ++i)
+    if (writes_level(rc, i)) written_levels.push_back(params.dec.levels[i]);
+  std::unique_ptr<ReportWriter> report;
+  std::unique_ptr<SummaryWriter> summary;
+  if (!opt.report.empty()) report = std::make_unique<ReportWriter>(opt.report);
+  if (!opt.summary.empty()) summary = std::make_unique<SummaryWriter>(opt.summary, written_levels);
+
+  std::optional<size_t> total;
+  if (opt.progress && opt.input != "-" && ends_with(opt.input, ".jsonl")) total = count_sequence_features(opt.input);
+  Progress progress(opt.progress, total);
+  std::optional<InterruptWatchdog> watchdog;
+  if (opt.handle_signals) watchdog.emplace(opt.interrupt_grace_s);
+
+  std::exception_ptr read_error, write_error;
+  std::atomic<bool> stop{false};
+  size_t next_sequence = 0, flagged = 0;
+
+  tbb::flow::graph g;
+  tbb::flow::input_node<Msg> source(g, [&](tbb::flow_control& fc) -> Msg {
+    if (stop.load() || interrupt_signal()) {
+      fc.stop();
+      return {};
+    }
+    auto w = std::make_shared<Work>();
+    const auto t = SteadyClock::now();
+    try {
+      if (!reader.next(w->feature)) {
+        fc.stop();
+        return {};
+      }
+    } catch (...) {
+      read_error = std::current_exception();
+      stop = true;
+      fc.stop();
+      return {};
+    }
+    w->read_seconds = since(t);
+    w->sequence = next_sequence++;
+    return w;
+  });
+  tbb::flow::limiter_node<Msg> limiter(g, static_cast<size_t>(res.in_flight));
+  tbb::flow::function_node<Msg, Msg> job(g, tbb::flow::unlimited, [&](Msg w) -> Msg {
+    if (stop.load() || interrupt_signal()) return w;  // nothing will be written: skip the work
+    if (opt.before_job) opt.before_job(w->feature);
+    w->outcome = run_building(std::move(w->feature), header, params, rc);
+    return w;
+  });
+  tbb::flow::sequencer_node<Msg> order(g, [](const Msg& w) { return w->sequence; });
+  tbb::flow::function_node<Msg, tbb::flow::continue_msg> write(g, tbb::flow::serial, [&](Msg w) {
+    if (stop.load() || interrupt_signal()) return tbb::flow::continue_msg();
+    BuildingOutcome& b = w->outcome;
+    b.sequence = w->sequence;
+    b.time.read = w->read_seconds;
+    const auto t = SteadyClock::now();
+    try {
+      writer.write(b.feature);
+      b.feature = mc::io::Feature{};  // release the geometry before the reports
+      b.time.write = since(t);
+      ++res.features;
+      if (b.is_building) {
+        ++res.buildings;
+        ++res.counts[b.status];
+        flagged += b.status == "failed" || b.status == "partial";
+        if (b.measures.centroid && crs.valid())
+          b.measures.lonlat = crs.to_lonlat(b.measures.centroid->x, b.measures.centroid->y, b.measures.centroid->z);
+        if (report) report->add(b);
+        if (summary) summary->add(b);
+      }
+    } catch (...) {
+      write_error = std::current_exception();
+      stop = true;
+    }
+    progress.update(res.features, flagged);
+    return tbb::flow::continue_msg();
+  });
+  tbb::flow::make_edge(source, limiter);
+  tbb::flow::make_edge(limiter, job);
+  tbb::flow::make_edge(job, order);
+  tbb::flow::make_edge(order, write);
+  tbb::flow::make_edge(write, limiter.decrementer());
+  source.activate();
+  g.wait_for_all();
+  progress.finish();
+
+  res.interrupted = interrupt_signal();
+  if (res.interrupted) return res;  // writers die uncommitted: no output files appear
+  if (read_error) std::rethrow_exception(read_error);
+  if (write_error) std::rethrow_exception(write_error);
+
+  writer.close();
+  if (summary) summary->commit();
+  res.reader_problems = reader.problems();
+  res.wall_seconds = since(start);
+  res.peak_rss_mb = peak_rss_mb();
+  if (report) {
+    std::string sha;
+    if (hash.valid()) {
+      sha = hash.get();
+    }
+    std::error_code ec;
+    const auto bytes = opt.input == "-" ? 0 : std::filesystem::file_size(opt.input, ec);
+    json counts = json::object();
+    for (const char* s : kStatuses) counts[s] = res.counts[s];
+    json run = {
+        {"tool", "morphcut-city"},
+        {"version", MC_VERSION},
+        {"input",
+         {{"path", opt.input},
+          {"format", reader.is_sequence() ? "CityJSONSeq" : "CityJSON"},
+          {"version", header.version},
+          {"crs", header.crs},
+          {"bytes", ec ? json(nullptr) : json(bytes)},
+          {"sha256", sha.empty() ? json(nullptr) : json(sha)}}},
+        {"outputs", {{"cityjson", opt.output}, {"report", opt.report}, {"summary", opt.summary}}},
+        {"config_file", opt.config_file.empty() ? json(nullptr) : json(opt.config_file)},
+        {"config", effective_config_json(params, rc)},
+        {"threads", res.threads},
+        {"in_flight", res.in_flight},
+        {"wall_seconds", res.wall_seconds},
+        {"buildings_per_second", res.wall_seconds > 0 ? res.buildings / res.wall_seconds : 0.0},
+        {"peak_rss_mb", res.peak_rss_mb},
+        {"features", res.features},
+        {"buildings", res.buildings},
+        {"counts", counts},
+        {"crs_for_wgs84", crs.valid() ? json(header.crs) : json(nullptr)},
+        {"reader_problems", res.reader_problems},
+        {"dropped_feature_extras", writer.dropped_extras()}};
+    if (!crs.valid() && !header.crs.empty()) run["crs_error"] = crs.error();
+    report->commit(run);
+  }
+  return res;
+}
+
+}  // namespace mc::pipeline

@@ -1,0 +1,47 @@
+// The planners' summary (architecture.md §5): one RFC 4180 row per building, streamed to an
+// atomic file. Columns:
+//   id, status, reason, lod, parts_<l> for each written level l,
+//   height            max z - min z of the input geometry,
+//   footprint_area    projected area of the GroundSurface faces, or of the 2D convex hull of
+//   footprint_method  all vertices when there is no GroundSurface ("ground" / "hull"),
+//   volume            of the reconstructed solid (all interior components),
+//   convexity         whole building: volume / volume of its convex hull,
+//   mean_part_convexity, largest_part_share, max_degree, end_parts
+//                     of the finest written level (end parts: exactly one neighbour),
+//   centroid_x/y/z    volume centroid of the solid in the source CRS (input bounding-box centre
+//   centroid_method   when there is no solid: "solid" / "bbox"),
+//   lon, lat          WGS84 degrees of the centroid (empty without a usable CRS).
+// Unknown values are empty fields (read as NULL by QGIS).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pipeline/outcome.hpp"
+
+namespace mc::io {
+class AtomicFile;
+class CsvWriter;
+}  // namespace mc::io
+
+namespace mc::pipeline {
+
+// The header row for these written level thresholds.
+std::vector<std::string> summary_columns(const std::vector<double>& level_thresholds);
+
+class SummaryWriter {
+ public:
+  // Throws mc::io::WriteError when the file cannot be created.
+  SummaryWriter(const std::string& path, std::vector<double> level_thresholds);
+  ~SummaryWriter();
+  void add(const BuildingOutcome& b);
+  void commit();
+
+ private:
+  std::string path_;
+  std::vector<double> thresholds_;
+  std::unique_ptr<mc::io::AtomicFile> file_;
+  std::unique_ptr<mc::io::CsvWriter> csv_;
+};
+
+}  // namespace mc::pipeline

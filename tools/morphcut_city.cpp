@@ -1,0 +1,130 @@
+// morphcut-city: decompose every building of a CityJSON city into convex parts (MorphCut).
+// The CLI only parses arguments, resolves defaults and maps outcomes to exit codes; the work is
+// pipeline::run_city (pipeline/run.hpp).
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "config/config.hpp"
+#include "io/errors.hpp"
+#include "pipeline/progress.hpp"
+#include "pipeline/run.hpp"
+
+namespace {
+
+constexpr int kExitUsage = 2;
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// "tiles/5910.city.json" -> "5910"; "-" -> "stdin".
+std::string stem_of(const std::string& input) {
+  if (input == "-") return "stdin";
+  std::string name = std::filesystem::path(input).filename().string();
+  for (const char* ext : {".city.jsonl", ".city.json", ".jsonl", ".json"})
+    if (ends_with(name, ext) && name.size() > std::string(ext).size()) return name.substr(0, name.size() - std::string(ext).size());
+  return name;
+}
+
+const char* kFooter = R"(Outputs (written to the current directory unless given):
+  OUTPUT   <stem>.morphcut.city.json (<stem>.morphcut.city.jsonl for CityJSONSeq input):
+           the input unchanged plus, per building and output LoD level, convex BuildingParts
+           <building id>-mc<level index>-<part index> with closed Solids, and the attributes
+           morphcut_status, morphcut_reason, morphcut_parts, morphcut_levels, morphcut_hausdorff
+  REPORT   <stem>.morphcut.report.json: version, effective config, input hash, timings, sizes
+           and per-level results for every building
+  SUMMARY  <stem>.morphcut.csv: one RFC 4180 row per building for planners (parts per level,
+           height, footprint, volume, convexities, part-graph statistics, centroid, lon/lat)
+  All outputs are atomic: they appear complete or not at all.
+
+Building status: ok, partial (deadline reached: best result so far written, reason given),
+failed (an error: building written through unchanged, reason given), skipped (no geometry).
+
+Exit codes:
+  0    every building ok (or skipped)
+  1    some buildings failed or are partial (all are still in the output)
+  2    usage, configuration, read or write error (no output written)
+  130  interrupted by SIGINT, 143 by SIGTERM (no output written; a second signal exits at once)
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
+               "morphcut-city"};
+  std::string input, config_path, output, report, summary, lod;
+  int threads = -1;
+  double timeout = -1;
+  bool quiet = false, no_report = false, no_summary = false;
+  app.add_option("INPUT", input, "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), or - for CityJSONSeq on stdin")
+      ->required();
+  app.add_option("--config,-c", config_path, "YAML configuration (see config/lod.yaml; unknown keys are rejected)")
+      ->check(CLI::ExistingFile);
+  app.add_option("-o,--output", output, "output CityJSON; .jsonl writes CityJSONSeq (default: <stem>.morphcut.city.json[l])");
+  app.add_option("--threads,-j", threads, "worker threads; 0 = all cores (default: config `threads`)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--timeout", timeout, "per-building deadline in seconds; 0 = none (default: config `timeout_s`)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--lod", lod, "input LoD to decompose, e.g. 2.2, or `highest` (default: config `lod`)");
+  app.add_option("--report", report, "run report JSON (default: <stem>.morphcut.report.json)");
+  app.add_option("--summary", summary, "summary CSV (default: <stem>.morphcut.csv)");
+  app.add_flag("--no-report", no_report, "do not write the run report");
+  app.add_flag("--no-summary", no_summary, "do not write the summary CSV");
+  app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
+  app.set_version_flag("--version", MC_VERSION);
+  app.footer(kFooter);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitUsage;
+  }
+
+  try {
+    mc::LoadedConfig cfg;
+    if (!config_path.empty()) cfg = mc::load_config_file(config_path);
+    if (threads >= 0) cfg.params.threads = threads;
+    if (timeout >= 0) cfg.params.timeout_s = timeout;
+    if (!lod.empty()) cfg.run.lod = lod;
+
+    const std::string stem = stem_of(input);
+    const bool sequence = input == "-" || ends_with(input, ".jsonl");
+    mc::pipeline::RunOptions opt;
+    opt.input = input;
+    opt.output = !output.empty() ? output : stem + (sequence ? ".morphcut.city.jsonl" : ".morphcut.city.json");
+    opt.report = no_report ? "" : (!report.empty() ? report : stem + ".morphcut.report.json");
+    opt.summary = no_summary ? "" : (!summary.empty() ? summary : stem + ".morphcut.csv");
+    opt.config_file = config_path;
+    opt.progress = !quiet && mc::pipeline::stderr_is_tty();
+    opt.handle_signals = true;
+
+    const mc::pipeline::RunResult r = mc::pipeline::run_city(opt, cfg.params, cfg.run);
+    if (r.interrupted) {
+      std::fprintf(stderr, "morphcut-city: interrupted (signal %d); no output written\n", r.interrupted);
+      return r.exit_code();
+    }
+    if (!quiet) {
+      std::fprintf(stderr,
+                   "morphcut-city: %zu buildings (%zu features) in %.1f s, %.2f buildings/s, %d threads: "
+                   "%zu ok, %zu partial, %zu failed, %zu skipped -> %s\n",
+                   r.buildings, r.features, r.wall_seconds, r.wall_seconds > 0 ? r.buildings / r.wall_seconds : 0.0,
+                   r.threads, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"), r.counts.at("skipped"),
+                   opt.output.c_str());
+      for (const auto& p : r.reader_problems) std::fprintf(stderr, "morphcut-city: input problem: %s\n", p.c_str());
+    }
+    return r.exit_code();
+  } catch (const mc::ConfigError& e) {
+    std::fprintf(stderr, "morphcut-city: config: %s\n", e.what());
+  } catch (const mc::io::ReadError& e) {
+    std::fprintf(stderr, "morphcut-city: cannot read input: %s\n", e.what());
+  } catch (const mc::io::WriteError& e) {
+    std::fprintf(stderr, "morphcut-city: cannot write output: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "morphcut-city: error: %s\n", e.what());
+  }
+  return kExitUsage;
+}
