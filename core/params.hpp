@@ -19,11 +19,11 @@ struct PreprocessParams {
   int min_region = 1;
   double angle_thresh_deg = 10;  // θa: plane merge, candidate snapping, plane classes
   // Carving.
-  int min_points = 100;
-  int max_points = 10000;
+  int min_points = 50;
+  int max_points = 2000;
   double inside_vote = 0.5;      // a cell is inside if its inside-point ratio exceeds this
   double inconsistency = 1e-3;   // re-queue threshold, relative to the cell volume c^3 unit
-  int oracle_rays = 7;           // rays per point for the inside/outside majority vote
+  int oracle_rays = 5;           // rays per point for the inside/outside majority vote
   uint64_t seed = 1;             // every random choice derives from it (determinism)
   // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).
   std::string up_axis = "auto";

@@ -51,10 +51,10 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   out.labels = mesh.semantic_labels;
 
   // Planes.
-  SegmentationParams sp = segmentation_params(p);
-  sp.dist_thresh = out.dist;
-  sp.max_distance = p.max_distance > 0 ? p.max_distance : out.dist;
-  sp.min_area = out.cell_size * out.cell_size;
+  PreprocessParams resolved = p;
+  resolved.cell_size = out.cell_size;
+  resolved.dist_thresh = out.dist;
+  const SegmentationParams sp = segmentation_params(resolved);
   const auto regions = segment_planes(mesh, sp);
   out.regions = regions.size();
   if (regions.empty()) throw std::runtime_error("degenerate geometry: no plane with enough area");

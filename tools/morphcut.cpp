@@ -1,0 +1,198 @@
+// morphcut: MorphCut on one building mesh (OFF/OBJ), for reproducing the paper's samples.
+//
+//   morphcut preprocess IN.off [--config FILE] [--out DIR] [--timeout S]
+//   morphcut decompose  IN.off [--config FILE] [--out DIR] [--threads N] [--timeout S] [--levels l1,l2,..]
+//
+// The configuration is a YAML file (config/lod.yaml layout) or the paper's JSON
+// (`NAME.off_config.json`); without --config, `IN_config.json` beside the input is used when
+// present (as the paper's samples ship), otherwise the defaults with automatic resolution.
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "config/config.hpp"
+#include "config/paper_config.hpp"
+#include "core/decompose.hpp"
+#include "core/preprocess.hpp"
+#include "io/atomic_file.hpp"
+#include "io/off_obj.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+int usage(const char* msg = nullptr) {
+  if (msg) std::cerr << "morphcut: " << msg << "\n";
+  std::cerr << "usage:\n"
+               "  morphcut preprocess IN.off|IN.obj [--config FILE] [--out DIR] [--timeout S]\n"
+               "  morphcut decompose  IN.off|IN.obj [--config FILE] [--out DIR] [--threads N] [--timeout S]\n"
+               "                      [--levels l1,l2,...]\n"
+               "Writes DIR/<stem>_singleton.off and, for decompose, DIR/<stem>_lod_<l>.off per level and\n"
+               "DIR/<stem>.morphcut.json. --config takes YAML (config/lod.yaml) or the paper's JSON;\n"
+               "default: <IN>_config.json beside the input if present.\n"
+               "Exit codes: 0 ok, 1 partial or failed, 2 usage or I/O error.\n";
+  return 2;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  mc::io::AtomicFile f(path);
+  f.stream() << text;
+  f.commit();
+}
+
+// One OFF for a level: every part's faces, one colour per part (hue spread like the paper's).
+void write_level_off(const std::string& path, const mc::Preprocessed& pre, const mc::LevelResult& level) {
+  mc::PolygonMesh all;
+  std::vector<mc::io::Rgb> colours;
+  const size_t n = level.parts.size();
+  for (size_t i = 0; i < n; ++i) {
+    const mc::PolygonMesh m = mc::part_mesh(pre, level.parts[i]);
+    const uint32_t base = static_cast<uint32_t>(all.vertices.size());
+    all.vertices.insert(all.vertices.end(), m.vertices.begin(), m.vertices.end());
+    const double hue = 360.0 * i / std::max<size_t>(1, n);
+    const double x = 1 - std::abs(std::fmod(hue / 60.0, 2) - 1);
+    double r = 0, g = 0, b = 0;
+    const int sector = static_cast<int>(hue / 60) % 6;
+    if (sector == 0) { r = 1; g = x; } else if (sector == 1) { r = x; g = 1; } else if (sector == 2) { g = 1; b = x; }
+    else if (sector == 3) { g = x; b = 1; } else if (sector == 4) { r = x; b = 1; } else { r = 1; b = x; }
+    for (mc::Polygon f : m.faces) {
+      for (auto& ring : f.rings)
+        for (auto& v : ring) v += base;
+      f.semantic = -1;
+      all.faces.push_back(std::move(f));
+      colours.push_back({uint8_t(255 * r), uint8_t(255 * g), uint8_t(255 * b)});
+    }
+  }
+  mc::io::write_off(path, all, colours);
+}
+
+std::string lod_name(double l) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6f", l);
+  return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) return usage();
+  const std::string cmd = argv[1];
+  if (cmd != "preprocess" && cmd != "decompose") return usage("unknown command");
+  std::string input = argv[2], config, out = ".", levels;
+  double timeout = -1;
+  int threads = 0;
+  for (int i = 3; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    try {
+      if (a == "--config") config = value();
+      else if (a == "--out") out = value();
+      else if (a == "--timeout") timeout = std::stod(value());
+      else if (a == "--threads") threads = std::stoi(value());
+      else if (a == "--levels") levels = value();
+      else return usage(("unknown option " + a).c_str());
+    } catch (const std::exception& e) {
+      return usage(e.what());
+    }
+  }
+
+  mc::Params params;
+  try {
+    if (config.empty() && fs::exists(input + "_config.json")) config = input + "_config.json";
+    if (!config.empty()) {
+      params = config.size() > 5 && config.substr(config.size() - 5) == ".json" ? mc::load_paper_config(config)
+                                                                                : mc::load_config_file(config).params;
+    }
+    if (!levels.empty()) {
+      params.dec.levels.clear();
+      std::stringstream ss(levels);
+      for (std::string t; std::getline(ss, t, ',');) params.dec.levels.push_back(std::stod(t));
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "morphcut: config: " << e.what() << "\n";
+    return 2;
+  }
+  if (timeout >= 0) params.timeout_s = timeout;
+  std::unique_ptr<tbb::global_control> gc;
+  if (threads > 0) gc = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+
+  const auto t0 = mc::Clock::now();
+  const auto deadline = params.timeout_s > 0 ? t0 + std::chrono::duration_cast<mc::Clock::duration>(
+                                                       std::chrono::duration<double>(params.timeout_s))
+                                             : mc::Clock::time_point::max();
+  const std::string stem = fs::path(input).stem().string();
+  json report{{"input", input}, {"status", "ok"}, {"reason", nullptr}};
+  int rc = 0;
+  try {
+    fs::create_directories(out);
+    std::vector<std::string> problems;
+    const bool obj = input.size() > 4 && input.substr(input.size() - 4) == ".obj";
+    const mc::PolygonMesh mesh = obj ? mc::io::read_obj(input, &problems) : mc::io::read_off(input, &problems);
+    mc::Preprocessed pre = mc::preprocess(mesh, params.pre, deadline);
+    problems.insert(problems.end(), pre.problems.begin(), pre.problems.end());
+    mc::io::write_off(out + "/" + stem + "_singleton.off", mc::singleton_mesh(pre));
+    report["preprocess"] = {{"seconds", pre.seconds},       {"hausdorff", pre.hausdorff},
+                            {"hausdorff_input_to_cell", pre.hausdorff_in_to_cell},
+                            {"hausdorff_cell_to_input", pre.hausdorff_cell_to_in},
+                            {"mean_distance", pre.mean_distance},
+                            {"planes", pre.regions},        {"cells", pre.cells},
+                            {"interior_cells", pre.inside_cells}, {"components", pre.components.size()},
+                            {"closed", pre.closed},         {"manifold", pre.manifold},
+                            {"cell_size", pre.cell_size},   {"dist_thresh", pre.dist},
+                            {"up_axis", pre.up_axis == 1 ? "y" : "z"}, {"problems", problems}};
+    double volume = 0;
+    for (const auto& c : pre.components) volume += c.volume;
+    report["preprocess"]["volume"] = volume;
+    if (pre.truncated) {
+      report["status"] = "partial";
+      report["reason"] = "carving stopped by the deadline or the cell limit";
+    }
+    if (cmd == "decompose") {
+      const mc::Decomposition d = mc::decompose(pre, params.dec, deadline);
+      report["preprocess"]["concave_edges"] = d.concave_edges;
+      json levels_json = json::array();
+      for (const auto& level : d.levels) {
+        write_level_off(out + "/" + stem + "_lod_" + lod_name(level.lod) + ".off", pre, level);
+        json parts = json::array();
+        for (const auto& p : level.parts)
+          parts.push_back({{"volume", p.volume}, {"hull_volume", p.hull_volume}, {"convexity", p.convexity},
+                           {"neighbours", p.neighbours}});
+        levels_json.push_back({{"lod", level.lod}, {"parts", level.parts.size()}, {"cost", level.cost},
+                               {"g", level.g}, {"h", level.h}, {"convexity", level.convexity},
+                               {"min_convexity", level.min_convexity}, {"mean_convexity", level.mean_convexity},
+                               {"remaining_concave_edges", level.remaining_concave},
+                               {"nodes_expanded", level.nodes_expanded}, {"seconds", level.seconds},
+                               {"truncated", level.truncated}, {"part_list", parts}});
+      }
+      report["levels"] = levels_json;
+      if (d.partial) {
+        report["status"] = "partial";
+        report["reason"] = d.reason;
+      }
+    }
+  } catch (const std::exception& e) {
+    report["status"] = "failed";
+    report["reason"] = e.what();
+  }
+  report["seconds"] = std::chrono::duration<double>(mc::Clock::now() - t0).count();
+  if (report["status"] != "ok") rc = 1;
+  try {
+    write_text(out + "/" + stem + ".morphcut.json", report.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    std::cerr << "morphcut: cannot write the report: " << e.what() << "\n";
+    return 2;
+  }
+  std::cout << report.dump(2) << "\n";
+  return rc;
+}
