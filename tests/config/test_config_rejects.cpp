@@ -10,6 +10,9 @@ struct Bad {
   const char* message;  // expected prefix of what()
 };
 
+// Readable (and stable) test names in ctest instead of the struct's bytes.
+void PrintTo(const Bad& b, std::ostream* os) { *os << std::string(b.message).substr(0, std::string(b.message).find(':')); }
+
 class Rejects : public ::testing::TestWithParam<Bad> {};
 
 TEST_P(Rejects, WithTheKeyPath) {
