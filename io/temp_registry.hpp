@@ -26,7 +26,9 @@ void unlink_registered_temp_files() noexcept;
 // Installs SIGINT and SIGTERM handlers that unlink the registered files and then carry on as
 // before: a previously installed handler function is called; otherwise the default action
 // (terminate, exit status 128+sig) is restored and the signal re-raised. A signal that was
-// ignored when this is called stays ignored. Idempotent.
+// ignored when this is called stays ignored. Idempotent. Note: the files are unlinked before a
+// chained handler runs, so an AtomicFile open at the signal can no longer commit() (it throws):
+// a graceful stop must not expect to finish outputs that were being written.
 void install_temp_cleanup_signal_handlers();
 
 }  // namespace mc::io
