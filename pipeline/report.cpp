@@ -11,7 +11,7 @@
 
 namespace mc::pipeline {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 namespace {
 // JSON has no NaN: unknown numbers are null.

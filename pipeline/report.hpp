@@ -18,7 +18,7 @@ class ScratchFile;
 namespace mc::pipeline {
 
 // One building's entry: id, status, reason, lod, timings, sizes, per-level results, Hausdorff.
-nlohmann::json building_report(const BuildingOutcome& b);
+nlohmann::ordered_json building_report(const BuildingOutcome& b);
 
 class ReportWriter {
  public:
@@ -26,8 +26,8 @@ class ReportWriter {
   explicit ReportWriter(const std::string& path);
   ~ReportWriter();
   void add(const BuildingOutcome& b);
-  // Writes `run` (an object) with "buildings": [...] appended, and commits.
-  void commit(const nlohmann::json& run);
+  // Writes `run` (an object, keys in the order given) with "buildings": [...] appended, and commits.
+  void commit(const nlohmann::ordered_json& run);
 
  private:
   std::string path_;

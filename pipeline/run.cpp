@@ -267,9 +267,10 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     }
     std::error_code ec;
     const auto bytes = opt.input == "-" ? 0 : std::filesystem::file_size(opt.input, ec);
-    json counts = json::object();
+    using ojson = nlohmann::ordered_json;
+    ojson counts = ojson::object();
     for (const char* s : kStatuses) counts[s] = res.counts[s];
-    json run = {
+    ojson run = {
         {"tool", "morphcut-city"},
         {"version", MC_VERSION},
         {"input",
@@ -277,11 +278,11 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
           {"format", reader.is_sequence() ? "CityJSONSeq" : "CityJSON"},
           {"version", header.version},
           {"crs", header.crs},
-          {"bytes", ec ? json(nullptr) : json(bytes)},
-          {"sha256", sha.empty() ? json(nullptr) : json(sha)}}},
+          {"bytes", ec ? ojson(nullptr) : ojson(bytes)},
+          {"sha256", sha.empty() ? ojson(nullptr) : ojson(sha)}}},
         {"outputs", {{"cityjson", opt.output}, {"report", opt.report}, {"summary", opt.summary}}},
-        {"config_file", opt.config_file.empty() ? json(nullptr) : json(opt.config_file)},
-        {"config", effective_config_json(params, rc)},
+        {"config_file", opt.config_file.empty() ? ojson(nullptr) : ojson(opt.config_file)},
+        {"config", ojson::parse(effective_config_json(params, rc).dump())},
         {"threads", res.threads},
         {"in_flight", res.in_flight},
         {"wall_seconds", res.wall_seconds},
@@ -290,7 +291,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         {"features", res.features},
         {"buildings", res.buildings},
         {"counts", counts},
-        {"crs_for_wgs84", crs.valid() ? json(header.crs) : json(nullptr)},
+        {"crs_for_wgs84", crs.valid() ? ojson(header.crs) : ojson(nullptr)},
         {"reader_problems", res.reader_problems},
         {"dropped_feature_extras", writer.dropped_extras()}};
     if (!crs.valid() && !header.crs.empty()) run["crs_error"] = crs.error();

@@ -1,0 +1,173 @@
+// Shared helpers of the pipeline tests: where the real data lives, reading outputs back, and an
+// independent closedness check of the written Solids.
+#pragma once
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace mc::test {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A file of the shared reference data (../shared/datasets/cityjson/...), or of datasets/.
+inline std::string data_file(const std::string& rel) {
+  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/",
+                                 std::string(MC_SOURCE_DIR) + "/datasets/"})
+    if (fs::exists(base + rel)) return base + rel;
+  return {};
+}
+
+#define MC_REQUIRE_DATA(var, rel)                                          \
+  const std::string var = ::mc::test::data_file(rel);                     \
+  if (var.empty()) GTEST_SKIP() << "test data " << rel << " not found";
+
+// A fresh empty directory under the build tree, removed by the destructor.
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& name) {
+    path = fs::path(MC_BINARY_DIR) / "test_tmp" / (name + "." + std::to_string(::getpid()));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A CityJSON file or a CityJSONSeq file as one document: CityObjects merged, vertices of every
+// feature appended (indices re-based), so both formats are checked the same way.
+inline json load_city(const std::string& path) {
+  const std::string text = slurp(path);
+  if (path.size() < 6 || path.substr(path.size() - 6) != ".jsonl") return json::parse(text);
+  std::istringstream in(text);
+  std::string line;
+  json doc;
+  bool first = true;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    json j = json::parse(line);
+    if (first) {
+      doc = j;
+      first = false;
+      continue;
+    }
+    const int64_t base = static_cast<int64_t>(doc["vertices"].size());
+    for (auto& v : j["vertices"]) doc["vertices"].push_back(v);
+    for (auto it = j["CityObjects"].begin(); it != j["CityObjects"].end(); ++it) {
+      json obj = it.value();
+      if (obj.contains("geometry"))
+        for (auto& g : obj["geometry"]) {
+          std::function<void(json&)> shift = [&](json& n) {
+            if (n.is_array()) for (auto& c : n) shift(c);
+            else if (n.is_number_integer()) n = n.get<int64_t>() + base;
+          };
+          if (g.contains("boundaries")) shift(g["boundaries"]);
+        }
+      doc["CityObjects"][it.key()] = obj;
+    }
+  }
+  return doc;
+}
+
+// Empty when every edge of the Solid's outer shell is used exactly twice, in opposite
+// directions, after merging vertices with equal coordinates.
+inline std::string solid_defect(const json& geometry, const json& vertices) {
+  if (geometry.value("type", "") != "Solid") return "not a Solid";
+  if (geometry["boundaries"].size() != 1) return "expected exactly one shell";
+  std::map<std::tuple<double, double, double>, int> ids;
+  auto id = [&](int64_t v) {
+    const auto& c = vertices.at(static_cast<size_t>(v));
+    auto key = std::make_tuple(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
+    return ids.try_emplace(key, static_cast<int>(ids.size())).first->second;
+  };
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& surface : geometry["boundaries"][0])
+    for (const auto& ring : surface) {
+      if (ring.size() < 3) return "ring with fewer than 3 vertices";
+      for (size_t i = 0; i < ring.size(); ++i) {
+        const int a = id(ring[i].get<int64_t>()), b = id(ring[(i + 1) % ring.size()].get<int64_t>());
+        if (a == b) return "zero-length edge";
+        ++edges[{a, b}];
+      }
+    }
+  for (const auto& [e, n] : edges) {
+    if (n != 1) return "edge used " + std::to_string(n) + " times in one direction";
+    auto back = edges.find({e.second, e.first});
+    if (back == edges.end() || back->second != 1) return "edge without its opposite";
+  }
+  return {};
+}
+
+struct ProcessResult {
+  int exit_code = -1;
+  std::string output;  // stdout + stderr
+};
+
+// Runs a shell command line, capturing stdout and stderr.
+inline ProcessResult run_command(const std::string& cmd) {
+  ProcessResult r;
+  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  const int status = ::pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+inline std::string cli_path() { return std::string(MC_BINARY_DIR) + "/tools/morphcut-city"; }
+
+// CSV rows split into fields (RFC 4180 quoting; CRLF or LF line ends).
+inline std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1);
+  std::string field;
+  bool quoted = false, any = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') field += '"', ++i;
+      else if (c == '"') quoted = false;
+      else field += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      rows.back().push_back(field), field.clear();
+    } else if (c == '\r') {
+    } else if (c == '\n') {
+      rows.back().push_back(field), field.clear();
+      rows.emplace_back();
+    } else {
+      field += c;
+    }
+    any = true;
+  }
+  if (!field.empty() || (!rows.back().empty())) rows.back().push_back(field);
+  if (rows.back().empty()) rows.pop_back();
+  (void)any;
+  return rows;
+}
+
+}  // namespace mc::test

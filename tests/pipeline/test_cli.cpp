@@ -1,0 +1,128 @@
+// The morphcut-city binary: help, exit codes, default output names, interruption.
+#include <signal.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "pipeline_fixtures.hpp"
+
+namespace mc::test {
+namespace {
+
+#define MC_REQUIRE_CLI()                                                                         \
+  ASSERT_TRUE(fs::exists(cli_path())) << cli_path()                                              \
+                                      << " missing: build the morphcut_city target before these tests"
+
+TEST(Cli, HelpIsCompleteAndExitsZero) {
+  MC_REQUIRE_CLI();
+  const ProcessResult r = run_command(cli_path() + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* s : {"INPUT", "--config", "--output", "--threads", "--timeout", "--lod", "--report", "--summary",
+                        "--quiet", "Exit codes", "130", ".morphcut.city.json", ".morphcut.report.json", ".morphcut.csv"})
+    EXPECT_NE(r.output.find(s), std::string::npos) << "--help does not mention " << s;
+}
+
+TEST(Cli, UsageConfigAndReadErrorsExitTwo) {
+  MC_REQUIRE_CLI();
+  TempDir dir("cli_errors");
+  EXPECT_EQ(run_command(cli_path()).exit_code, 2);                               // no INPUT
+  EXPECT_EQ(run_command(cli_path() + " x.city.json --threads -1").exit_code, 2);  // bad value
+  EXPECT_EQ(run_command(cli_path() + " x.city.json --bogus").exit_code, 2);       // unknown option
+  const ProcessResult missing = run_command("cd " + dir.path.string() + " && " + cli_path() + " missing.city.json");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("missing.city.json"), std::string::npos) << missing.output;
+  {
+    std::ofstream bad(dir / "bad.yaml");
+    bad << "decompose:\n  sigma: [1]\n  bogus_key: 3\n";
+  }
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
+  const ProcessResult cfg = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input + " --config bad.yaml");
+  EXPECT_EQ(cfg.exit_code, 2);
+  EXPECT_NE(cfg.output.find("decompose."), std::string::npos) << cfg.output;
+  EXPECT_TRUE(fs::is_empty(dir.path) || !fs::exists(dir / "3dbag_b2.morphcut.city.json"));
+}
+
+TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
+  MC_REQUIRE_CLI();
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
+  TempDir dir("cli_defaults");
+  {
+    std::ofstream cfg(dir / "quick.yaml");
+    cfg << "decompose:\n  levels: [0.1]\n";
+  }
+  const ProcessResult r =
+      run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input + " --config quick.yaml --threads 2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 ok"), std::string::npos) << r.output;  // the final summary line
+  EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.city.jsonl"));
+  EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.report.json"));
+  EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.csv"));
+  const json report = json::parse(slurp(dir / "3dbag_b2.morphcut.report.json"));
+  EXPECT_EQ(report["config_file"], "quick.yaml");
+  EXPECT_EQ(report["config"]["decompose"]["levels"], json::array({0.1}));
+  // --quiet: nothing on stderr for a clean run.
+  const ProcessResult q = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
+                                      " --config quick.yaml -q -o q.city.jsonl --no-report --no-summary");
+  EXPECT_EQ(q.exit_code, 0);
+  EXPECT_EQ(q.output, "");
+  EXPECT_TRUE(fs::exists(dir / "q.city.jsonl"));
+}
+
+TEST(Cli, StdinIsReadAsCityJsonSeq) {
+  MC_REQUIRE_CLI();
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
+  TempDir dir("cli_stdin");
+  {
+    std::ofstream cfg(dir / "quick.yaml");
+    cfg << "decompose:\n  levels: [0.1]\n";
+  }
+  const ProcessResult r =
+      run_command("cd " + dir.path.string() + " && " + cli_path() + " - --config quick.yaml -q < " + input);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const json report = json::parse(slurp(dir / "stdin.morphcut.report.json"));
+  EXPECT_EQ(report["counts"]["ok"], 2);
+  EXPECT_TRUE(report["input"]["sha256"].is_null());
+  EXPECT_TRUE(fs::exists(dir / "stdin.morphcut.city.jsonl"));
+}
+
+// SIGINT / SIGTERM in the middle of a tile: exit 130 / 143, no output, no temp file.
+void interrupt_midway(int sig) {
+  MC_REQUIRE_CLI();
+  MC_REQUIRE_DATA(input, "upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.jsonl");
+  TempDir dir(std::string("cli_signal") + std::to_string(sig));
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (chdir(dir.path.c_str()) != 0) _exit(99);
+    int devnull = ::open("/dev/null", O_WRONLY);
+    dup2(devnull, 1), dup2(devnull, 2);
+    execl(cli_path().c_str(), "morphcut-city", input.c_str(), "--threads", "2", "-q", static_cast<char*>(nullptr));
+    _exit(98);
+  }
+  // Wait until the outputs' temp files exist (the run is under way), then interrupt.
+  bool started = false;
+  for (int i = 0; i < 200 && !started; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (const auto& e : fs::directory_iterator(dir.path))
+      started = started || e.path().filename().string().find(".tmp.") != std::string::npos;
+  }
+  EXPECT_TRUE(started);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  kill(pid, sig);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir.path)) left.push_back(e.path().filename().string());
+  EXPECT_TRUE(left.empty()) << "left behind: " << (left.empty() ? "" : left.front());
+}
+
+TEST(Cli, SigintStopsCleanlyWithExit130) { interrupt_midway(SIGINT); }
+TEST(Cli, SigtermStopsCleanlyWithExit143) { interrupt_midway(SIGTERM); }
+
+}  // namespace
+}  // namespace mc::test

@@ -1,0 +1,211 @@
+// run_city end to end on real files: nothing lost, closed parts, reports, determinism, failures.
+#include <cmath>
+
+#include "config/config.hpp"
+#include "io/cityjson.hpp"
+#include "pipeline/run.hpp"
+#include "pipeline/summary_csv.hpp"
+#include "pipeline_fixtures.hpp"
+
+namespace mc::pipeline {
+namespace {
+
+using mc::test::json;
+
+struct Outputs {
+  RunResult result;
+  std::string output, report, summary;
+};
+
+Outputs run_on(const std::string& input, const mc::test::TempDir& dir, const std::string& tag, int threads,
+               Params p = {}, RunConfig rc = {}, std::function<void(mc::io::Feature&)> hook = {}) {
+  const bool seq = input.size() > 6 && input.substr(input.size() - 6) == ".jsonl";
+  Outputs o;
+  o.output = dir / (tag + (seq ? ".city.jsonl" : ".city.json"));
+  o.report = dir / (tag + ".report.json");
+  o.summary = dir / (tag + ".csv");
+  RunOptions opt;
+  opt.input = input;
+  opt.output = o.output;
+  opt.report = o.report;
+  opt.summary = o.summary;
+  opt.before_job = std::move(hook);
+  p.threads = threads;
+  o.result = run_city(opt, p, rc);
+  return o;
+}
+
+// Every input object is in the output, unchanged except for the Buildings' children and
+// morphcut attributes; every added object is a closed BuildingPart of a Building.
+void check_output(const std::string& input, const std::string& output) {
+  const json in = mc::test::load_city(input);
+  const json out = mc::test::load_city(output);
+  EXPECT_EQ(out["version"], in["version"]);
+  EXPECT_EQ(out["transform"], in["transform"]);
+  EXPECT_EQ(out["metadata"], in["metadata"]);
+  for (auto it = in["CityObjects"].begin(); it != in["CityObjects"].end(); ++it) {
+    ASSERT_TRUE(out["CityObjects"].contains(it.key())) << it.key() << " lost";
+    json o = out["CityObjects"][it.key()];
+    if (o["type"] == "Building") {
+      for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff"})
+        o["attributes"].erase(k);
+      if (o["attributes"].empty() && !it.value().contains("attributes")) o.erase("attributes");
+      json kept = json::array();
+      for (const auto& c : o["children"])
+        if (c.get<std::string>().find("-mc") == std::string::npos) kept.push_back(c);
+      o["children"] = kept;
+      if (kept.empty() && !it.value().contains("children")) o.erase("children");
+      EXPECT_TRUE(out["CityObjects"][it.key()]["attributes"].contains("morphcut_status")) << it.key();
+    }
+    // Geometry boundaries are re-indexed in a .city.json, so compare everything else.
+    json a = o, b = it.value();
+    a.erase("geometry"), b.erase("geometry");
+    EXPECT_EQ(a, b) << it.key();
+    EXPECT_EQ(o.contains("geometry"), it.value().contains("geometry"));
+  }
+  for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it) {
+    if (in["CityObjects"].contains(it.key())) continue;
+    const json& part = it.value();
+    EXPECT_EQ(part["type"], "BuildingPart") << it.key();
+    const std::string parent = part["parents"][0];
+    EXPECT_EQ(out["CityObjects"][parent]["type"], "Building");
+    EXPECT_EQ(mc::test::solid_defect(part["geometry"][0], out["vertices"]), "") << it.key();
+  }
+}
+
+TEST(Run, CityJsonFileEveryObjectKeptPartsClosedReportsComplete) {
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
+  mc::test::TempDir dir("run_json");
+  const Outputs o = run_on(input, dir, "b2", 2);
+  EXPECT_EQ(o.result.buildings, 2u);
+  EXPECT_EQ(o.result.counts.at("ok"), 2u);
+  EXPECT_EQ(o.result.exit_code(), 0);
+  check_output(input, o.output);
+
+  // Run report.
+  const json r = json::parse(mc::test::slurp(o.report));
+  EXPECT_EQ(r["tool"], "morphcut-city");
+  EXPECT_EQ(r["version"], MC_VERSION);
+  EXPECT_EQ(r["input"]["sha256"].get<std::string>().size(), 64u);
+  EXPECT_EQ(r["input"]["crs"], "EPSG:7415");
+  EXPECT_EQ(r["threads"], 2);
+  EXPECT_EQ(r["counts"]["ok"], 2);
+  EXPECT_EQ(r["config"]["decompose"]["levels"].size(), 4u);
+  EXPECT_GT(r["wall_seconds"].get<double>(), 0);
+  ASSERT_EQ(r["buildings"].size(), 2u);
+  for (const auto& b : r["buildings"]) {
+    EXPECT_EQ(b["status"], "ok");
+    for (const char* k : {"read", "extract", "preprocess", "decompose", "write"}) EXPECT_TRUE(b["timings"][k].is_number()) << k;
+    EXPECT_EQ(b["timings"]["levels"].size(), 4u);
+    for (const char* k : {"input_faces", "planes", "cells", "concave_edges"}) EXPECT_GT(b["sizes"][k].get<double>(), 0) << k;
+    ASSERT_EQ(b["levels"].size(), 4u);
+    for (const auto& l : b["levels"]) {
+      EXPECT_GE(l["parts"].get<int>(), 1);
+      EXPECT_TRUE(l["convexity"].is_number());
+      EXPECT_TRUE(l["cost"].is_number());
+      EXPECT_TRUE(l["nodes_expanded"].is_number());
+    }
+    EXPECT_TRUE(b["hausdorff"].is_number());
+  }
+
+  // Summary CSV: header + one row per building, all the same width; lon/lat near Delft.
+  const auto rows = mc::test::parse_csv(mc::test::slurp(o.summary));
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0], summary_columns({0.1, 0.01, 0.001, 0.0001}));
+  auto col = [&](const std::string& name) {
+    return static_cast<size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  for (size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), rows[0].size());
+    EXPECT_EQ(rows[i][col("status")], "ok");
+    EXPECT_NEAR(std::stod(rows[i][col("lon")]), 4.36, 0.02);
+    EXPECT_NEAR(std::stod(rows[i][col("lat")]), 52.00, 0.02);
+    EXPECT_GT(std::stod(rows[i][col("volume")]), 100.0);
+    EXPECT_GT(std::stod(rows[i][col("parts_0.0001")]), 1.0);
+    const double share = std::stod(rows[i][col("largest_part_share")]);
+    EXPECT_GT(share, 0.0);
+    EXPECT_LE(share, 1.0);
+    EXPECT_EQ(rows[i][col("footprint_method")], "ground");
+  }
+  EXPECT_EQ(mc::test::slurp(o.summary).find("\r\n") != std::string::npos, true);  // RFC 4180 CRLF
+}
+
+TEST(Run, ThreadCountDoesNotChangeAByteOfTheOutputs) {
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
+  mc::test::TempDir dir("run_determinism");
+  const Outputs one = run_on(input, dir, "t1", 1);
+  const Outputs two = run_on(input, dir, "t2", 2);
+  EXPECT_EQ(one.result.threads, 1);
+  EXPECT_EQ(two.result.threads, 2);
+  check_output(input, one.output);
+  const std::string a = mc::test::slurp(one.output), b = mc::test::slurp(two.output);
+  ASSERT_FALSE(a.empty());
+  EXPECT_TRUE(a == b) << "CityJSONSeq outputs differ between 1 and 2 threads";
+  EXPECT_TRUE(mc::test::slurp(one.summary) == mc::test::slurp(two.summary)) << "summary CSVs differ";
+}
+
+TEST(Run, AFailingBuildingIsWrittenThroughAndTheOthersProcessed) {
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
+  mc::test::TempDir dir("run_failure");
+  Params p;
+  p.dec.levels = {0.1, 0.01};
+  std::string broken;
+  const Outputs o = run_on(input, dir, "f", 2, p, {}, [&](mc::io::Feature& f) {
+    if (!broken.empty()) return;
+    broken = f.id;
+    for (auto& v : f.vertices) v.z = 0;  // flattened: nothing inside, the job fails
+  });
+  EXPECT_EQ(o.result.counts.at("failed"), 1u);
+  EXPECT_EQ(o.result.counts.at("ok"), 1u);
+  EXPECT_EQ(o.result.exit_code(), 1);
+  const json out = mc::test::load_city(o.output);
+  const json& b = out["CityObjects"][broken];
+  EXPECT_EQ(b["attributes"]["morphcut_status"], "failed");
+  EXPECT_FALSE(b["attributes"]["morphcut_reason"].get<std::string>().empty());
+  for (const auto& c : b["children"]) EXPECT_EQ(c.get<std::string>().find("-mc"), std::string::npos);
+  size_t parts = 0;
+  for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it)
+    parts += it.key().find("-mc") != std::string::npos;
+  EXPECT_GE(parts, 2u);  // the other building's parts
+  const json r = json::parse(mc::test::slurp(o.report));
+  EXPECT_EQ(r["counts"]["failed"], 1);
+  EXPECT_EQ(r["buildings"][0]["status"], "failed");
+  EXPECT_TRUE(r["buildings"][0].contains("reason"));
+  const auto rows = mc::test::parse_csv(mc::test::slurp(o.summary));
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1][1], "failed");
+  EXPECT_FALSE(rows[1][2].empty());
+}
+
+TEST(Run, OutputLevelsAndLodSelectWhatIsWritten) {
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
+  mc::test::TempDir dir("run_levels");
+  const LoadedConfig cfg = load_config_string("decompose:\n  levels: [0.1, 0.01]\noutput_levels: [0.01]\nlod: \"2.2\"\n");
+  const Outputs o = run_on(input, dir, "l", 2, cfg.params, cfg.run);
+  EXPECT_EQ(o.result.counts.at("ok"), 2u);
+  const json out = mc::test::load_city(o.output);
+  size_t level1 = 0;
+  for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it) {
+    EXPECT_EQ(it.key().find("-mc0-"), std::string::npos) << "level 0 not requested";
+    level1 += it.key().find("-mc1-") != std::string::npos;
+  }
+  EXPECT_GT(level1, 2u);
+  const auto rows = mc::test::parse_csv(mc::test::slurp(o.summary));
+  EXPECT_EQ(rows[0], summary_columns({0.01}));
+}
+
+TEST(Run, UnreadableInputAndUnwritableOutputThrowAndLeaveNothing) {
+  mc::test::TempDir dir("run_errors");
+  RunOptions opt;
+  opt.input = dir / "missing.city.json";
+  opt.output = dir / "out.city.json";
+  EXPECT_THROW(run_city(opt, Params{}, RunConfig{}), mc::io::ReadError);
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
+  opt.input = input;
+  opt.output = dir / "no/such/dir/out.city.json";
+  EXPECT_THROW(run_city(opt, Params{}, RunConfig{}), mc::io::WriteError);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path));
+}
+
+}  // namespace
+}  // namespace mc::pipeline

@@ -1,0 +1,56 @@
+// The output validates against the official CityJSON 2.0 schema (ajv-cli, installed by
+// tools/setup-deps.sh into build/node_tools; skipped with a message when it is not there).
+#include "pipeline_fixtures.hpp"
+
+namespace mc::test {
+namespace {
+
+std::string ajv_path() {
+  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/build", std::string(MC_BINARY_DIR)}) {
+    const std::string p = base + "/node_tools/node_modules/.bin/ajv";
+    if (fs::exists(p)) return p;
+  }
+  return {};
+}
+
+std::string schema_dir() { return std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/schemas/2.0"; }
+
+TEST(Schema, OutputValidatesAgainstCityJson20) {
+  const std::string ajv = ajv_path();
+  if (ajv.empty())
+    GTEST_SKIP() << "ajv-cli not installed (run tools/setup-deps.sh, which puts it in build/node_tools): "
+                    "schema validation of the output NOT checked";
+  if (!fs::exists(schema_dir() + "/cityjson.min.schema.json")) GTEST_SKIP() << "CityJSON 2.0 schema not found";
+  ASSERT_TRUE(fs::exists(cli_path())) << "build the morphcut_city target first";
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
+  TempDir dir("schema");
+  {
+    std::ofstream cfg(dir / "quick.yaml");
+    cfg << "decompose:\n  levels: [0.1, 0.001]\n";
+  }
+  const ProcessResult run = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
+                                        " --config quick.yaml -q -o out.city.json --no-report --no-summary");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // The output has to be a real decomposition for the check to mean anything.
+  const json out = json::parse(slurp(dir / "out.city.json"));
+  size_t parts = 0;
+  for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it) parts += it.key().find("-mc") != std::string::npos;
+  ASSERT_GT(parts, 2u);
+  const std::string cmd = ajv + " validate --strict=false -c ajv-formats -s " + schema_dir() +
+                          "/cityjson.min.schema.json -d " + (dir / "out.city.json");
+  const ProcessResult v = run_command(cmd);
+  EXPECT_EQ(v.exit_code, 0) << cmd << "\n" << v.output.substr(0, 4000);
+  EXPECT_NE(v.output.find("valid"), std::string::npos) << v.output;
+
+  // A deliberately broken copy must fail, or the check above proves nothing.
+  json broken = out;
+  for (auto it = broken["CityObjects"].begin(); it != broken["CityObjects"].end(); ++it)
+    if (it.key().find("-mc") != std::string::npos) it.value()["type"] = "NotACityObjectType";
+  std::ofstream(dir / "broken.city.json") << broken.dump();
+  const ProcessResult bad = run_command(ajv + " validate --strict=false -c ajv-formats -s " + schema_dir() +
+                                        "/cityjson.min.schema.json -d " + (dir / "broken.city.json"));
+  EXPECT_NE(bad.exit_code, 0) << bad.output.substr(0, 2000);
+}
+
+}  // namespace
+}  // namespace mc::test
