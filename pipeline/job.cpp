@@ -252,6 +252,27 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   }
 }
 
+// Drops vertices no object refers to any more (those of removed parts), keeping the order of the
+// others, so a re-run writes the same vertex list as the first run.
+void compact_vertices(mc::io::Feature& f) {
+  std::vector<int64_t> remap(f.vertices.size(), -1);
+  mc::io::for_each_vertex_ref(f.objects, [&](json& leaf, const std::string&, const std::string&) {
+    if (leaf.is_number_integer() && leaf.get<int64_t>() >= 0 && leaf.get<uint64_t>() < remap.size())
+      remap[leaf.get<size_t>()] = 0;
+  });
+  std::vector<Vec3> kept;
+  for (size_t i = 0; i < remap.size(); ++i)
+    if (remap[i] == 0) {
+      remap[i] = static_cast<int64_t>(kept.size());
+      kept.push_back(f.vertices[i]);
+    }
+  mc::io::for_each_vertex_ref(f.objects, [&](json& leaf, const std::string&, const std::string&) {
+    if (leaf.is_number_integer() && leaf.get<int64_t>() >= 0 && leaf.get<uint64_t>() < remap.size())
+      leaf = remap[leaf.get<size_t>()];
+  });
+  f.vertices = std::move(kept);
+}
+
 }  // namespace
 
 size_t strip_previous_parts(mc::io::Feature& f) {
@@ -276,6 +297,7 @@ size_t strip_previous_parts(mc::io::Feature& f) {
   if (auto a = b->find("attributes"); a != b->end() && a->is_object())
     for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff"})
       a->erase(k);
+  if (removed) compact_vertices(f);
   return removed;
 }
 

@@ -17,6 +17,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "config/config.hpp"
+
 namespace mc::test {
 
 namespace fs = std::filesystem;
@@ -48,6 +50,10 @@ struct TempDir {
   }
   std::string operator/(const std::string& f) const { return (path / f).string(); }
 };
+
+// The defaults a user gets (config/lod.yaml), which are what the CLI runs with; core's Params{}
+// are not necessarily the same.
+inline mc::LoadedConfig default_config() { return mc::load_config_string(""); }
 
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

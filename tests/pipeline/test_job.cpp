@@ -31,7 +31,7 @@ TEST(Job, DecomposesA3dBagBuildingIntoClosedParts) {
   mc::io::Header h;
   auto features = read_all(path, h);
   ASSERT_EQ(features.size(), 2u);
-  const Params p;
+  const Params p = mc::test::default_config().params;
   const RunConfig rc;
   const mc::io::Feature input = features[0];
   const BuildingOutcome b = run_building(input, h, p, rc);
@@ -108,7 +108,7 @@ TEST(Job, RunningOnItsOwnOutputGivesTheSameParts) {
   MC_REQUIRE_DATA(path, "cjseq/3dbag_b2.city.json");
   mc::io::Header h;
   auto features = read_all(path, h);
-  Params p;
+  Params p = mc::test::default_config().params;
   p.dec.levels = {0.1};  // one level keeps this quick
   const RunConfig rc;
   const BuildingOutcome once = run_building(features[1], h, p, rc);
@@ -124,7 +124,7 @@ TEST(Job, BrokenGeometryFailsAndPassesThroughUnchanged) {
   auto features = read_all(path, h);
   mc::io::Feature bad = features[0];
   for (auto& v : bad.vertices) v.z = 0;  // flattened: no volume, nothing can be inside
-  const BuildingOutcome b = run_building(bad, h, Params{}, RunConfig{});
+  const BuildingOutcome b = run_building(bad, h, mc::test::default_config().params, mc::test::default_config().run);
   EXPECT_EQ(b.status, "failed");
   EXPECT_FALSE(b.reason.empty());
   EXPECT_EQ(b.feature.vertices.size(), bad.vertices.size());
@@ -141,7 +141,7 @@ TEST(Job, MissingLodIsSkippedWithTheAvailableLods) {
   auto features = read_all(path, h);
   RunConfig rc;
   rc.lod = "1.3";
-  const BuildingOutcome b = run_building(features[0], h, Params{}, rc);
+  const BuildingOutcome b = run_building(features[0], h, mc::test::default_config().params, rc);
   EXPECT_EQ(b.status, "skipped");
   EXPECT_NE(b.reason.find("1.3"), std::string::npos) << b.reason;
   EXPECT_NE(b.reason.find("2.2"), std::string::npos) << b.reason;
@@ -157,7 +157,7 @@ TEST(Job, NonBuildingsPassThroughUntouched) {
   for (const auto& f : features) {
     if (mc::io::is_building(f)) continue;
     seen = true;
-    const BuildingOutcome b = run_building(f, h, Params{}, RunConfig{});
+    const BuildingOutcome b = run_building(f, h, mc::test::default_config().params, mc::test::default_config().run);
     EXPECT_FALSE(b.is_building);
     EXPECT_EQ(b.feature.objects, f.objects);
     EXPECT_EQ(b.feature.vertices.size(), f.vertices.size());
@@ -169,9 +169,9 @@ TEST(Job, ZeroTimeoutIsNoDeadlineButATinyOneGivesPartialWithAReason) {
   MC_REQUIRE_DATA(path, "cjseq/3dbag_b2.city.json");
   mc::io::Header h;
   auto features = read_all(path, h);
-  Params p;
+  Params p = mc::test::default_config().params;
   p.timeout_s = 1e-6;  // expires at once: the job must still return a complete, written result
-  const BuildingOutcome b = run_building(features[0], h, p, RunConfig{});
+  const BuildingOutcome b = run_building(features[0], h, p, mc::test::default_config().run);
   ASSERT_TRUE(b.status == "partial" || b.status == "failed") << b.status;
   EXPECT_FALSE(b.reason.empty());
   if (b.status == "partial") {

@@ -18,7 +18,7 @@ struct Outputs {
 };
 
 Outputs run_on(const std::string& input, const mc::test::TempDir& dir, const std::string& tag, int threads,
-               Params p = {}, RunConfig rc = {}, std::function<void(mc::io::Feature&)> hook = {}) {
+               Params p = mc::test::default_config().params, RunConfig rc = {}, std::function<void(mc::io::Feature&)> hook = {}) {
   const bool seq = input.size() > 6 && input.substr(input.size() - 6) == ".jsonl";
   Outputs o;
   o.output = dir / (tag + (seq ? ".city.jsonl" : ".city.json"));
@@ -147,7 +147,7 @@ TEST(Run, ThreadCountDoesNotChangeAByteOfTheOutputs) {
 TEST(Run, AFailingBuildingIsWrittenThroughAndTheOthersProcessed) {
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
   mc::test::TempDir dir("run_failure");
-  Params p;
+  Params p = mc::test::default_config().params;
   p.dec.levels = {0.1, 0.01};
   std::string broken;
   const Outputs o = run_on(input, dir, "f", 2, p, {}, [&](mc::io::Feature& f) {

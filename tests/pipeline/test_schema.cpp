@@ -36,20 +36,17 @@ TEST(Schema, OutputValidatesAgainstCityJson20) {
   size_t parts = 0;
   for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it) parts += it.key().find("-mc") != std::string::npos;
   ASSERT_GT(parts, 2u);
-  const std::string cmd = ajv + " validate --strict=false -c ajv-formats -s " + schema_dir() +
-                          "/cityjson.min.schema.json -d " + (dir / "out.city.json");
-  const ProcessResult v = run_command(cmd);
-  EXPECT_EQ(v.exit_code, 0) << cmd << "\n" << v.output.substr(0, 4000);
-  EXPECT_NE(v.output.find("valid"), std::string::npos) << v.output;
-
-  // A deliberately broken copy must fail, or the check above proves nothing.
+  // A deliberately broken copy must be rejected, or a pass proves nothing. One ajv call for both
+  // files: compiling the 300 kB schema is most of ajv's time.
   json broken = out;
   for (auto it = broken["CityObjects"].begin(); it != broken["CityObjects"].end(); ++it)
     if (it.key().find("-mc") != std::string::npos) it.value()["type"] = "NotACityObjectType";
   std::ofstream(dir / "broken.city.json") << broken.dump();
-  const ProcessResult bad = run_command(ajv + " validate --strict=false -c ajv-formats -s " + schema_dir() +
-                                        "/cityjson.min.schema.json -d " + (dir / "broken.city.json"));
-  EXPECT_NE(bad.exit_code, 0) << bad.output.substr(0, 2000);
+  const std::string cmd = ajv + " validate --strict=false --all-errors=false -c ajv-formats -s " + schema_dir() +
+                          "/cityjson.min.schema.json -d " + (dir / "out.city.json") + " -d " + (dir / "broken.city.json");
+  const ProcessResult v = run_command(cmd);
+  EXPECT_NE(v.output.find("out.city.json valid"), std::string::npos) << cmd << "\n" << v.output.substr(0, 4000);
+  EXPECT_NE(v.output.find("broken.city.json invalid"), std::string::npos) << v.output.substr(0, 2000);
 }
 
 }  // namespace
