@@ -7,7 +7,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <CGAL/centroid.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -23,7 +26,8 @@ using Triangles = std::vector<K::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
-constexpr double kMaxSamples = 4e6;
+constexpr double kMaxSamples = 4e6;      // hard cap per side (the step is coarsened beyond)
+constexpr size_t kMeanSamples = 50000;   // the mean is estimated from at most this many
 
 K::Point_3 to_point(const Vec3& v, const Vec3& origin) {
   const Vec3 p = v - origin;
@@ -43,54 +47,93 @@ Triangles triangles_of(const TriangleSoup& s, const Vec3& origin) {
   return out;
 }
 
-int subdivisions(const K::Triangle_3& t, double step) {
-  double longest = 0;
-  for (int i = 0; i < 3; ++i) longest = std::max(longest, std::sqrt(CGAL::to_double(CGAL::squared_distance(t[i], t[(i + 1) % 3]))));
-  return std::max(1, static_cast<int>(std::ceil(longest / step)));
-}
-
 struct Samples {
   std::vector<K::Point_3> points;
-  std::vector<double> weights;  // triangle area / samples of that triangle
+  std::vector<double> weights;  // area represented by each point
 };
 
-// Barycentric lattice with n subdivisions per edge: every point of the triangle lies within
-// one lattice cell, whose edges are at most `step` long.
-Samples sample(const Triangles& tris, double step) {
-  double total = 0;
-  for (const auto& t : tris) {
-    const double n = subdivisions(t, step);
-    total += (n + 1) * (n + 2) / 2;
-  }
-  if (total > kMaxSamples) step *= std::sqrt(total / kMaxSamples) * 1.01;
-  Samples s;
-  for (const auto& t : tris) {
-    const int n = subdivisions(t, step);
-    const K::Vector_3 e1 = (t[1] - t[0]) / n, e2 = (t[2] - t[0]) / n;
-    const double w = std::sqrt(CGAL::to_double(t.squared_area())) / ((n + 1.0) * (n + 2.0) / 2);
+// Barycentric lattice with n subdivisions per edge (n = ceil(longest edge / step)): every
+// point lies in a lattice cell with edges <= step. A lattice on a sliver would cost
+// (length/step)^2 points for almost no area, so slivers are first cut by longest-edge
+// bisection until the pieces are fat or short; their cost is then linear in their length.
+bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples& s) {
+  std::vector<std::array<K::Point_3, 3>> stack{{t[0], t[1], t[2]}};
+  while (!stack.empty()) {
+    const auto tri = stack.back();
+    stack.pop_back();
+    int longest = 0;
+    double len2 = -1;
+    for (int i = 0; i < 3; ++i) {
+      const double l = CGAL::to_double(CGAL::squared_distance(tri[i], tri[(i + 1) % 3]));
+      if (l > len2) { len2 = l; longest = i; }
+    }
+    const double len = std::sqrt(len2);
+    const double area = std::sqrt(CGAL::to_double(K::Triangle_3(tri[0], tri[1], tri[2]).squared_area()));
+    const double min_altitude = 2 * area / len;
+    if (len > step && min_altitude < len / 4) {  // a sliver: bisect its longest edge
+      const K::Point_3& a = tri[longest];
+      const K::Point_3& b = tri[(longest + 1) % 3];
+      const K::Point_3& c = tri[(longest + 2) % 3];
+      const K::Point_3 m = CGAL::midpoint(a, b);
+      stack.push_back({a, m, c});
+      stack.push_back({m, b, c});
+      continue;
+    }
+    const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
+    const K::Vector_3 e1 = (tri[1] - tri[0]) / n, e2 = (tri[2] - tri[0]) / n;
+    const double w = area / ((n + 1.0) * (n + 2.0) / 2);
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) {
-        s.points.push_back(t[0] + i * e1 + j * e2);
+        s.points.push_back(tri[0] + i * e1 + j * e2);
         s.weights.push_back(w);
       }
+    if (s.points.size() > budget) return false;
   }
-  return s;
+  return true;
+}
+
+// Samples of all triangles; the step grows when `budget` would be exceeded. `*used` = step.
+Samples sample(const Triangles& tris, double step, size_t budget, double* used) {
+  for (;;) {
+    Samples s;
+    bool ok = true;
+    for (const auto& t : tris)
+      if (!(ok = sample_triangle(t, step, budget, s))) break;
+    if (ok) {
+      *used = step;
+      return s;
+    }
+    step *= 1.5;
+  }
 }
 
 struct OneSided {
   double max = 0, mean = 0;
 };
 
+std::vector<double> distances(const Tree& tree, const std::vector<K::Point_3>& pts) {
+  std::vector<double> d(pts.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, d.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    // Consecutive samples are neighbours on one triangle: the previous closest point is a
+    // tighter hint than the tree's default.
+    K::Point_3 hint = tree.closest_point(pts[r.begin()]);
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      hint = tree.closest_point(pts[i], hint);
+      d[i] = std::sqrt(CGAL::to_double(CGAL::squared_distance(pts[i], hint)));
+    }
+  });
+  return d;
+}
+
 OneSided one_sided(const Triangles& from, const Triangles& to, double step) {
   if (from.empty()) return {};
   if (to.empty()) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   Tree tree(to.begin(), to.end());
   tree.accelerate_distance_queries();
-  const Samples s = sample(from, step);
-  std::vector<double> d(s.points.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, d.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) d[i] = std::sqrt(CGAL::to_double(tree.squared_distance(s.points[i])));
-  });
+  // Mean (and a first maximum) from a sampling of bounded size.
+  double mean_step = step;
+  const Samples s = sample(from, step, kMeanSamples, &mean_step);
+  const std::vector<double> d = distances(tree, s.points);
   OneSided out;
   double wsum = 0;
   for (size_t i = 0; i < d.size(); ++i) {  // serial sums: the result does not depend on threads
@@ -99,6 +142,68 @@ OneSided one_sided(const Triangles& from, const Triangles& to, double step) {
     wsum += s.weights[i];
   }
   out.mean = wsum > 0 ? out.mean / wsum : 0;
+  if (mean_step <= step) return out;
+
+  // Maximum at the requested step by branch and bound. The distance to one triangle τ of
+  // `to` is convex, so over a triangle T of `from` it peaks at a corner of T: with τ the closest
+  // triangles of T's corners, min_τ max_corner d(corner, τ) bounds the distance on all of T.
+  // T is bisected (longest edge) only while that bound beats the current maximum and its
+  // edges are longer than the step.
+  auto upper_bound = [&](const std::array<K::Point_3, 3>& t, double* corner_max) {
+    // Candidates: the closest triangles of the corners and of the centroid (a corner shared
+    // with neighbours may pick a neighbour; the centroid picks the triangle T lies on).
+    std::array<Primitive::Id, 4> ids;
+    *corner_max = 0;
+    for (int k = 0; k < 3; ++k) {
+      const auto pp = tree.closest_point_and_primitive(t[k]);
+      ids[k] = pp.second;
+      *corner_max = std::max(*corner_max, std::sqrt(CGAL::to_double(CGAL::squared_distance(t[k], pp.first))));
+    }
+    ids[3] = tree.closest_point_and_primitive(CGAL::centroid(t[0], t[1], t[2])).second;
+    double ub = std::numeric_limits<double>::infinity();
+    for (const auto& id : ids) {
+      double m = 0;
+      for (int k = 0; k < 3; ++k) m = std::max(m, std::sqrt(CGAL::to_double(CGAL::squared_distance(t[k], *id))));
+      ub = std::min(ub, m);
+    }
+    return ub;
+  };
+  std::vector<std::pair<double, size_t>> order(from.size());
+  std::vector<double> corner_max(from.size());
+  tbb::parallel_for(size_t(0), from.size(), [&](size_t t) {
+    order[t] = {upper_bound({from[t][0], from[t][1], from[t][2]}, &corner_max[t]), t};
+  });
+  for (double c : corner_max) out.max = std::max(out.max, c);
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  // Bounds within a sliver of the maximum cannot change it meaningfully (rounding noise would
+  // otherwise force full refinement when two surfaces coincide).
+  const double slack = 1e-3 * step;
+  size_t queries = 0;
+  for (const auto& [ub0, t0] : order) {
+    if (ub0 <= out.max + slack) break;
+    std::vector<std::array<K::Point_3, 3>> stack{{from[t0][0], from[t0][1], from[t0][2]}};
+    while (!stack.empty() && queries < static_cast<size_t>(kMaxSamples)) {
+      const auto t = stack.back();
+      stack.pop_back();
+      double cm = 0;
+      const double ub = upper_bound(t, &cm);
+      queries += 3;
+      out.max = std::max(out.max, cm);
+      if (ub <= out.max + slack) continue;
+      int longest = 0;
+      double len2 = -1;
+      for (int i = 0; i < 3; ++i) {
+        const double l = CGAL::to_double(CGAL::squared_distance(t[i], t[(i + 1) % 3]));
+        if (l > len2) { len2 = l; longest = i; }
+      }
+      if (len2 <= step * step) continue;  // resolved to the requested step
+      const K::Point_3 m = CGAL::midpoint(t[longest], t[(longest + 1) % 3]);
+      stack.push_back({t[longest], m, t[(longest + 2) % 3]});
+      stack.push_back({m, t[(longest + 1) % 3], t[(longest + 2) % 3]});
+    }
+  }
   return out;
 }
 
