@@ -56,6 +56,7 @@ void validate_pre(const PreprocessParams& p) {
   open_range("preprocess.inside_vote", p.inside_vote, 0, 1);
   at_least("preprocess.inconsistency", p.inconsistency, 0);
   at_least("preprocess.oracle_rays", p.oracle_rays, 1);
+  at_least("preprocess.vote_batch", p.vote_batch, 0);
   one_of("preprocess.up_axis", p.up_axis, {"z", "y", "auto"});
   finite("preprocess.min_component_fraction", p.min_component_fraction);
   if (!(p.min_component_fraction >= 0 && p.min_component_fraction < 1))

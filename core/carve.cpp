@@ -116,11 +116,17 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   auto vote = [&](uint32_t c) {
     const double v = cx.cell_volume(c);
     const long n = std::clamp<long>(static_cast<long>(std::ceil(v / unit)), p.min_points, p.max_points);
-    const auto pts = sample_cell(cx, c, static_cast<int>(n), p.seed ^ (uint64_t(c) << 20));
-    classify(pts, (uint64_t(c) << 24) ^ p.seed, flags);
-    res.points += pts.size();
+    // A cell the input surface does not touch is entirely inside or outside: a few points
+    // (majority) decide it. Every other cell gets the full vote.
+    const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
+    const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
+    const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(cx.cell_bbox(c));
+    const auto pts = sample_cell(cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
+    classify(pts, first_id, flags);
     size_t in = 0;
     for (uint8_t f : flags) in += f != 0;
+    res.points += pts.size();
+    if (free_cell) in = 2 * in > pts.size() ? pts.size() : 0;  // unanimous by construction
     const double r = pts.empty() ? 0.0 : double(in) / pts.size();
     if (inside_label.size() <= c) inside_label.resize(c + 1024, 0);
     inside_label[c] = r > p.inside_vote;

@@ -31,6 +31,9 @@ struct CarveParams {
   double inside_vote = 0.5;
   double inconsistency = 1e-3;  // times c³
   size_t max_cells = 50000;
+  int vote_batch = 9;           // points deciding a cell the surface does not touch (0 = full vote)
+  // Whether the input surface touches a box (conservative); null = always full votes.
+  std::function<bool(const BBox&)> surface_touches;
   uint64_t seed = 1;
 };
 

@@ -23,6 +23,7 @@ struct PreprocessParams {
   int max_points = 2000;
   double inside_vote = 0.5;      // a cell is inside if its inside-point ratio exceeds this
   double inconsistency = 1e-3;   // re-queue threshold, relative to the cell volume c^3 unit
+  int vote_batch = 9;            // points voting on a cell the input surface does not touch (0 = full vote)
   int oracle_rays = 5;           // rays per point for the inside/outside majority vote
   uint64_t seed = 1;             // every random choice derives from it (determinism)
   // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).

@@ -10,6 +10,7 @@
 #include "core/segmentation.hpp"
 #include "core/soup.hpp"
 #include "core/surface.hpp"
+#include "core/surface_index.hpp"
 #include "core/up_axis.hpp"
 
 namespace mc {
@@ -85,6 +86,9 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cp.inside_vote = p.inside_vote;
   cp.inconsistency = p.inconsistency;
   cp.seed = p.seed;
+  cp.vote_batch = p.vote_batch;
+  const SurfaceIndex index(tris);
+  cp.surface_touches = [&](const BBox& b) { return index.touches(b); };
   const CarveResult cr = carve(
       *out.complex, cps,
       [&](const std::vector<Vec3>& pts, uint64_t first, std::vector<uint8_t>& flags) {

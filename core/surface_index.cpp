@@ -1,0 +1,41 @@
+#include "core/surface_index.hpp"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <vector>
+
+namespace mc {
+
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Triangles = std::vector<K::Triangle_3>;
+using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+}  // namespace
+
+struct SurfaceIndex::Impl {
+  Triangles triangles;
+  Tree tree;
+};
+
+SurfaceIndex::SurfaceIndex(const TriangleSoup& soup) : impl_(std::make_unique<Impl>()) {
+  for (const auto& t : soup.triangles) {
+    const Vec3 &a = soup.vertices[t[0]], &b = soup.vertices[t[1]], &c = soup.vertices[t[2]];
+    K::Triangle_3 tri({a.x, a.y, a.z}, {b.x, b.y, b.z}, {c.x, c.y, c.z});
+    if (!tri.is_degenerate()) impl_->triangles.push_back(tri);
+  }
+  impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
+  impl_->tree.build();
+}
+
+SurfaceIndex::~SurfaceIndex() = default;
+
+bool SurfaceIndex::touches(const BBox& b) const {
+  if (impl_->triangles.empty()) return false;
+  return impl_->tree.do_intersect(CGAL::Bbox_3(b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z));
+}
+
+}  // namespace mc
