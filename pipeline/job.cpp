@@ -101,6 +101,71 @@ void set_status_attributes(BuildingOutcome& out) {
   if (std::isfinite(out.hausdorff)) a["morphcut_hausdorff"] = out.hausdorff;
 }
 
+// One level's parts encoded and checked, not yet in the feature.
+struct EncodedLevel {
+  std::vector<StagedPart> staged;
+  std::vector<PolygonMesh> meshes;
+  LevelOutcome lv;      // the geometric fields; the search fields are the caller's
+  size_t dropped_faces = 0;
+  std::string defect;   // non-empty: a part is not a closed solid, and nothing else is valid
+};
+
+EncodedLevel encode_level(const std::string& building, size_t i, double threshold, const std::vector<PartResult>& parts,
+                          const Preprocessed& pre, const std::string& lod, const std::string& version, VertexPool& pool) {
+  EncodedLevel e;
+  e.lv.index = i;
+  e.lv.threshold = threshold;
+  e.lv.parts = parts.size();
+  if (parts.empty()) {
+    e.defect = "no parts";
+    return e;
+  }
+  double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
+  for (size_t j = 0; j < parts.size(); ++j) {
+    const PartResult& part = parts[j];
+    PolygonMesh mesh = part_mesh(pre, part);
+    double hull_volume = part.hull_volume;
+    if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton parts
+    const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
+    EncodedSolid solid = encode_solid(mesh, lod, version, pool);
+    if (std::string defect = closed_shell_defect(solid.shell); !defect.empty()) {
+      e.defect = "part " + std::to_string(j) + " is not a closed 2-manifold (" + defect + ")";
+      return e;
+    }
+    e.dropped_faces += solid.dropped_faces;
+    json neighbours = json::array();
+    for (uint32_t n : part.neighbours) neighbours.push_back(part_id(building, i, n));
+    const int degree = static_cast<int>(part.neighbours.size());
+    e.lv.max_degree = std::max(e.lv.max_degree, degree);
+    e.lv.end_parts += degree == 1;
+    total_volume += part.volume;
+    largest = std::max(largest, part.volume);
+    weighted_cvx += convexity * part.volume;
+    sum_cvx += convexity;
+    min_cvx = std::min(min_cvx, convexity);
+    json obj = {{"type", "BuildingPart"},
+                {"parents", json::array({building})},
+                {"attributes",
+                 {{"morphcut_level", threshold},
+                  {"morphcut_index", j},
+                  {"volume", part.volume},
+                  {"convexity", convexity},
+                  {"neighbours", neighbours}}},
+                {"geometry", json::array({std::move(solid.geometry)})}};
+    e.staged.push_back({part_id(building, i, j), std::move(obj)});
+    e.meshes.push_back(std::move(mesh));
+  }
+  if (total_volume > 0) e.lv.largest_share = largest / total_volume;
+  e.lv.convexity = total_volume > 0 ? weighted_cvx / total_volume : 0.0;
+  e.lv.mean_convexity = sum_cvx / static_cast<double>(parts.size());
+  e.lv.min_convexity = min_cvx;
+  return e;
+}
+
+std::string deadline_reason(const Params& p, const char* where) {
+  return "deadline (timeout_s=" + fmt_seconds(p.timeout_s) + ") reached " + where;
+}
+
 // The decomposing part of the job; throws on failure (the caller turns that into "failed").
 void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, const mc::io::Header& h,
                         const Params& p, const RunConfig& rc) {
@@ -134,21 +199,46 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   VertexPool pool(new_vertices, transform);
   std::vector<StagedPart> staged;
   std::vector<PolygonMesh> first_level_meshes;
-  std::vector<Vec3> all_points;
   const std::vector<PartResult> singleton = singleton_parts(pre);
+  const std::vector<PartResult>* last_good = nullptr;  // the parts of the last level written
+  std::vector<std::string> notes;                      // why the result is partial
   bool fell_back = false;
   for (size_t i = 0; i < p.dec.levels.size(); ++i) {
     if (!writes_level(rc, i)) continue;
     const LevelSource src = source_for(dec, i);
-    const std::vector<PartResult>& parts = src.result ? src.result->parts : singleton;
-    if (parts.empty()) throw std::runtime_error("level " + std::to_string(i) + " has no parts");
-    LevelOutcome lv;
-    lv.index = i;
-    lv.threshold = p.dec.levels[i];
-    lv.parts = parts.size();
-    lv.fallback = src.fallback;
-    fell_back = fell_back || !src.fallback.empty();
-    if (src.result && src.fallback.empty()) {
+    const std::vector<PartResult>* parts = src.result ? &src.result->parts : &singleton;
+    std::string fallback = src.fallback;
+    const size_t mark = pool.mark();
+    EncodedLevel e = encode_level(out.id, i, p.dec.levels[i], *parts, pre, lod, h.version, pool);
+    if (!e.defect.empty()) {
+      // A part that is not a valid solid (core's part mesh has a non-manifold edge) is never
+      // written. Stand-ins, in order: the previous written level, a finer level (more parts,
+      // but valid ones), the singleton cell. Only when none is valid does the building fail.
+      pool.rollback(mark);
+      const std::string why = "level " + std::to_string(i) + ": " + e.defect;
+      std::vector<std::pair<const std::vector<PartResult>*, std::string>> stand_ins;
+      if (last_good) stand_ins.emplace_back(last_good, "previous level");
+      for (size_t k = i + 1; k < dec.levels.size(); ++k)
+        stand_ins.emplace_back(&dec.levels[k].parts, "level " + std::to_string(k));
+      if (parts != &singleton) stand_ins.emplace_back(&singleton, "singleton");
+      std::string tried;
+      for (const auto& [alt, name] : stand_ins) {
+        e = encode_level(out.id, i, p.dec.levels[i], *alt, pre, lod, h.version, pool);
+        if (e.defect.empty()) {
+          fallback = name;
+          parts = alt;
+          break;
+        }
+        pool.rollback(mark);
+        tried += "; " + name + " too: " + e.defect;
+      }
+      if (!e.defect.empty()) throw std::runtime_error(why + tried);
+      notes.push_back(why + ", " + fallback + " written instead");
+    }
+    LevelOutcome& lv = e.lv;
+    lv.fallback = fallback;
+    fell_back = fell_back || !fallback.empty();
+    if (src.result && fallback.empty()) {
       const LevelResult& r = *src.result;
       lv.convexity = r.convexity;
       lv.mean_convexity = r.mean_convexity;
@@ -159,51 +249,11 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
       lv.seconds = r.seconds;
       lv.truncated = r.truncated;
     }
-    const bool record_meshes = first_level_meshes.empty();
-    double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
-    for (size_t j = 0; j < parts.size(); ++j) {
-      const PartResult& part = parts[j];
-      PolygonMesh mesh = part_mesh(pre, part);
-      double hull_volume = part.hull_volume;
-      if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton fallback
-      const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
-      EncodedSolid solid = encode_solid(mesh, lod, h.version, pool);
-      if (const std::string defect = closed_shell_defect(solid.shell); !defect.empty())
-        throw std::runtime_error("part " + part_id(out.id, i, j) + " is not a closed solid: " + defect);
-      out.size.dropped_faces += solid.dropped_faces;
-      json neighbours = json::array();
-      for (uint32_t n : part.neighbours) neighbours.push_back(part_id(out.id, i, n));
-      const int degree = static_cast<int>(part.neighbours.size());
-      lv.max_degree = std::max(lv.max_degree, degree);
-      lv.end_parts += degree == 1;
-      total_volume += part.volume;
-      largest = std::max(largest, part.volume);
-      weighted_cvx += convexity * part.volume;
-      sum_cvx += convexity;
-      min_cvx = std::min(min_cvx, convexity);
-      json obj = {{"type", "BuildingPart"},
-                  {"parents", json::array({out.id})},
-                  {"attributes",
-                   {{"morphcut_level", lv.threshold},
-                    {"morphcut_index", j},
-                    {"volume", part.volume},
-                    {"convexity", convexity},
-                    {"neighbours", neighbours}}},
-                  {"geometry", json::array({std::move(solid.geometry)})}};
-      staged.push_back({part_id(out.id, i, j), std::move(obj)});
-      if (record_meshes) {
-        all_points.insert(all_points.end(), mesh.vertices.begin(), mesh.vertices.end());
-        first_level_meshes.push_back(std::move(mesh));
-      }
-    }
-    if (total_volume > 0) lv.largest_share = largest / total_volume;
-    if (!src.fallback.empty() || !std::isfinite(lv.convexity)) {
-      // Not searched: measure the parts we are actually writing.
-      lv.convexity = total_volume > 0 ? weighted_cvx / total_volume : 0.0;
-      lv.mean_convexity = sum_cvx / static_cast<double>(parts.size());
-      lv.min_convexity = min_cvx;
-    }
+    out.size.dropped_faces += e.dropped_faces;
+    for (auto& s : e.staged) staged.push_back(std::move(s));
+    if (first_level_meshes.empty()) first_level_meshes = std::move(e.meshes);
     out.levels.push_back(std::move(lv));
+    last_good = parts;
   }
 
   // Whole building: volume, convexity against the hull of all part vertices (= the singleton's
@@ -211,6 +261,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   double volume = 0;
   for (const auto& c : pre.components) volume += c.volume;
   out.measures.volume = volume;
+  std::vector<Vec3> all_points;
+  for (const auto& m : first_level_meshes) all_points.insert(all_points.end(), m.vertices.begin(), m.vertices.end());
   const double hull = convex_hull(all_points).volume;
   if (hull > 0) out.measures.convexity = std::min(1.0, volume / hull);
   const VolumeCentroid vc = volume_centroid(first_level_meshes);
@@ -241,12 +293,12 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   out.size.output_vertices_added = new_vertices.size();
   out.time.encode = since(t);
 
-  const bool truncated_pre = pre.truncated;
-  if (dec.partial || truncated_pre || fell_back) {
+  if (dec.partial || pre.truncated || fell_back) {
     out.status = "partial";
-    if (!dec.reason.empty()) out.reason = dec.reason;
-    else if (truncated_pre) out.reason = "deadline (timeout_s=" + fmt_seconds(p.timeout_s) + ") reached during preprocessing";
-    else out.reason = "deadline (timeout_s=" + fmt_seconds(p.timeout_s) + ") reached before the last level";
+    if (!dec.reason.empty()) notes.insert(notes.begin(), dec.reason);
+    else if (pre.truncated) notes.insert(notes.begin(), deadline_reason(p, "during preprocessing"));
+    else if (dec.partial || notes.empty()) notes.insert(notes.begin(), deadline_reason(p, "before the last level"));
+    for (const auto& n : notes) out.reason += (out.reason.empty() ? "" : "; ") + n;
   } else {
     out.status = "ok";
   }

@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <stdexcept>
 
 namespace mc::pipeline {
@@ -32,6 +34,12 @@ int64_t VertexPool::add(const Vec3& v) {
   auto [it, fresh] = index_.try_emplace({q[0], q[1], q[2]}, static_cast<int64_t>(out_.size()));
   if (fresh) out_.push_back(snapped);
   return it->second;
+}
+
+void VertexPool::rollback(size_t mark) {
+  for (auto it = index_.begin(); it != index_.end();)
+    it = it->second >= static_cast<int64_t>(mark) ? index_.erase(it) : std::next(it);
+  out_.resize(std::min(out_.size(), mark));
 }
 
 EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const std::string& version,

@@ -22,6 +22,9 @@ class VertexPool {
  public:
   VertexPool(std::vector<Vec3>& out, const mc::io::Transform& t) : out_(out), t_(t) {}
   int64_t add(const Vec3& v);
+  // Undo every add() since mark() (a level that turned out invalid leaves no vertices behind).
+  size_t mark() const { return out_.size(); }
+  void rollback(size_t mark);
 
  private:
   std::vector<Vec3>& out_;

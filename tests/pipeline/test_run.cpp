@@ -209,3 +209,40 @@ TEST(Run, UnreadableInputAndUnwritableOutputThrowAndLeaveNothing) {
 
 }  // namespace
 }  // namespace mc::pipeline
+
+namespace mc::pipeline {
+namespace {
+
+// Two 3D BAG buildings whose reconstructed solids touch themselves along an edge at the coarse
+// levels: such parts must never be written (a CityJSON Solid must be a closed 2-manifold); a
+// valid stand-in level is written instead and the status says so.
+TEST(Run, PartsThatAreNotClosedManifoldsAreNeverWritten) {
+  MC_REQUIRE_DATA(tile, "upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.jsonl");
+  mc::test::TempDir dir("run_manifold");
+  {
+    std::istringstream in(mc::test::slurp(tile));
+    std::ofstream out(dir / "two.city.jsonl");
+    std::string line;
+    std::getline(in, line);
+    out << line << "\n";
+    while (std::getline(in, line))
+      if (line.find("\"id\":\"NL.IMBAG.Pand.0503100000019693\"") != std::string::npos ||
+          line.find("\"id\":\"NL.IMBAG.Pand.0503100000033695\"") != std::string::npos)
+        out << line << "\n";
+  }
+  const Outputs o = run_on(dir / "two.city.jsonl", dir, "m", 2);
+  ASSERT_EQ(o.result.buildings, 2u);
+  EXPECT_EQ(o.result.counts.at("failed"), 0u);
+  check_output(dir / "two.city.jsonl", o.output);  // every written part is closed
+  const json r = json::parse(mc::test::slurp(o.report));
+  for (const auto& b : r["buildings"]) {
+    ASSERT_EQ(b["levels"].size(), 4u);
+    if (b["status"] == "partial") {
+      EXPECT_NE(b["reason"].get<std::string>().find("written instead"), std::string::npos) << b["reason"];
+    }
+    for (const auto& l : b["levels"]) EXPECT_GE(l["parts"].get<int>(), 1);
+  }
+}
+
+}  // namespace
+}  // namespace mc::pipeline
