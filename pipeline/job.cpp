@@ -24,6 +24,10 @@ constexpr size_t kMaxProblems = 20;
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// Attribute values are rounded: core's hull volumes vary in the last bits from run to run (even
+// on one thread), and the written files must be byte-identical; 1e-9 is far below any meaning.
+double rounded(double v, double step) { return std::isfinite(v) ? std::round(v / step) * step : v; }
+
 std::string part_id(const std::string& building, size_t level, size_t index) {
   return building + "-mc" + std::to_string(level) + "-" + std::to_string(index);
 }
@@ -98,7 +102,7 @@ void set_status_attributes(BuildingOutcome& out) {
     a["morphcut_parts"] = parts;
     a["morphcut_levels"] = levels;
   }
-  if (std::isfinite(out.hausdorff)) a["morphcut_hausdorff"] = out.hausdorff;
+  if (std::isfinite(out.hausdorff)) a["morphcut_hausdorff"] = rounded(out.hausdorff, 1e-6);
 }
 
 // One level's parts encoded and checked, not yet in the feature.
@@ -148,8 +152,8 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
                 {"attributes",
                  {{"morphcut_level", threshold},
                   {"morphcut_index", j},
-                  {"volume", part.volume},
-                  {"convexity", convexity},
+                  {"volume", rounded(part.volume, 1e-6)},
+                  {"convexity", rounded(convexity, 1e-9)},
                   {"neighbours", neighbours}}},
                 {"geometry", json::array({std::move(solid.geometry)})}};
     e.staged.push_back({part_id(building, i, j), std::move(obj)});

@@ -41,8 +41,13 @@ const char* kFooter = R"(Outputs (written to the current directory unless given)
            height, footprint, volume, convexities, part-graph statistics, centroid, lon/lat)
   All outputs are atomic: they appear complete or not at all.
 
-Building status: ok, partial (deadline reached: best result so far written, reason given),
-failed (an error: building written through unchanged, reason given), skipped (no geometry).
+Building status (attribute morphcut_status, with morphcut_reason when not ok):
+  ok       every level decomposed
+  partial  the deadline was reached (the best result so far is written), or a level's parts
+           were not valid solids (a valid coarser or finer level is written in its place)
+  failed   an error: the building is written through unchanged
+  skipped  no surface geometry at the requested LoD
+Running on a morphcut output replaces the parts of the earlier run.
 
 Exit codes:
   0    every building ok (or skipped)
