@@ -289,7 +289,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         {"buildings_per_second", res.wall_seconds > 0 ? res.buildings / res.wall_seconds : 0.0},
         {"peak_rss_mb", res.peak_rss_mb},
         {"features", res.features},
-        {"buildings", res.buildings},
+        {"building_count", res.buildings},
         {"counts", counts},
         {"crs_for_wgs84", crs.valid() ? ojson(header.crs) : ojson(nullptr)},
         {"reader_problems", res.reader_problems},

@@ -107,7 +107,7 @@ if os.path.exists(sys.argv[2]):
     m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", open(sys.argv[2]).read())
     if m: rss = int(m.group(1)) / 1024
 c = r["counts"]
-print(f"{sys.argv[3]:<22} {r['buildings']:>9} {r['wall_seconds']:>9.1f} {r['buildings_per_second']:>8.2f} "
+print(f"{sys.argv[3]:<22} {r['building_count']:>9} {r['wall_seconds']:>9.1f} {r['buildings_per_second']:>8.2f} "
       f"{c['ok']:>6}/{c['partial']}/{c['failed']}/{c['skipped']:<8} {rss:>10.1f}")
 PY
 }
