@@ -27,7 +27,7 @@ using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
 constexpr double kMaxSamples = 4e6;      // hard cap per side (the step is coarsened beyond)
-constexpr size_t kMeanSamples = 50000;   // the mean is estimated from at most this many
+constexpr size_t kMeanSamples = 20000;   // samples per side at most (the step is coarsened beyond)
 
 K::Point_3 to_point(const Vec3& v, const Vec3& origin) {
   const Vec3 p = v - origin;
@@ -42,7 +42,9 @@ Triangles triangles_of(const TriangleSoup& s, const Vec3& origin) {
   for (const auto& t : s.triangles) {
     K::Triangle_3 tri(to_point(s.vertices[t[0]], origin), to_point(s.vertices[t[1]], origin),
                       to_point(s.vertices[t[2]], origin));
-    if (!tri.is_degenerate()) out.push_back(tri);
+    bool finite = true;
+    for (int k = 0; k < 3; ++k) finite = finite && is_finite(s.vertices[t[k]]);
+    if (finite && !tri.is_degenerate()) out.push_back(tri);
   }
   return out;
 }
@@ -70,6 +72,7 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
     const double len = std::sqrt(len2);
     const double area = std::sqrt(CGAL::to_double(K::Triangle_3(tri[0], tri[1], tri[2]).squared_area()));
     const double min_altitude = 2 * area / len;
+    if (s.points.size() + stack.size() > budget) return false;
     if (len > step && min_altitude < len / 4) {  // a sliver: bisect its longest edge
       const K::Point_3& a = tri[longest];
       const K::Point_3& b = tri[(longest + 1) % 3];
@@ -79,6 +82,8 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
       stack.push_back({m, b, c});
       continue;
     }
+    if (!std::isfinite(len) || !std::isfinite(area)) continue;
+    if (len / step > std::sqrt(static_cast<double>(budget)) + 1) return false;  // coarsen the step first
     const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
     const K::Vector_3 e1 = (tri[1] - tri[0]) / n, e2 = (tri[2] - tri[0]) / n;
     const double w = area / ((n + 1.0) * (n + 2.0) / 2);
@@ -94,6 +99,8 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
 
 // Samples of all triangles; the step grows when `budget` would be exceeded. `*used` = step.
 Samples sample(const Triangles& tris, double step, size_t budget, double* used) {
+  // Every triangle gets at least its 3 corners, so the budget must allow that.
+  budget = std::max(budget, 4 * tris.size());
   for (;;) {
     Samples s;
     bool ok = true;
@@ -142,68 +149,8 @@ OneSided one_sided(const Triangles& from, const Triangles& to, double step) {
     wsum += s.weights[i];
   }
   out.mean = wsum > 0 ? out.mean / wsum : 0;
-  if (mean_step <= step) return out;
-
-  // Maximum at the requested step by branch and bound. The distance to one triangle τ of
-  // `to` is convex, so over a triangle T of `from` it peaks at a corner of T: with τ the closest
-  // triangles of T's corners, min_τ max_corner d(corner, τ) bounds the distance on all of T.
-  // T is bisected (longest edge) only while that bound beats the current maximum and its
-  // edges are longer than the step.
-  auto upper_bound = [&](const std::array<K::Point_3, 3>& t, double* corner_max) {
-    // Candidates: the closest triangles of the corners and of the centroid (a corner shared
-    // with neighbours may pick a neighbour; the centroid picks the triangle T lies on).
-    std::array<Primitive::Id, 4> ids;
-    *corner_max = 0;
-    for (int k = 0; k < 3; ++k) {
-      const auto pp = tree.closest_point_and_primitive(t[k]);
-      ids[k] = pp.second;
-      *corner_max = std::max(*corner_max, std::sqrt(CGAL::to_double(CGAL::squared_distance(t[k], pp.first))));
-    }
-    ids[3] = tree.closest_point_and_primitive(CGAL::centroid(t[0], t[1], t[2])).second;
-    double ub = std::numeric_limits<double>::infinity();
-    for (const auto& id : ids) {
-      double m = 0;
-      for (int k = 0; k < 3; ++k) m = std::max(m, std::sqrt(CGAL::to_double(CGAL::squared_distance(t[k], *id))));
-      ub = std::min(ub, m);
-    }
-    return ub;
-  };
-  std::vector<std::pair<double, size_t>> order(from.size());
-  std::vector<double> corner_max(from.size());
-  tbb::parallel_for(size_t(0), from.size(), [&](size_t t) {
-    order[t] = {upper_bound({from[t][0], from[t][1], from[t][2]}, &corner_max[t]), t};
-  });
-  for (double c : corner_max) out.max = std::max(out.max, c);
-  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
-    return a.first != b.first ? a.first > b.first : a.second < b.second;
-  });
-  // Bounds within a sliver of the maximum cannot change it meaningfully (rounding noise would
-  // otherwise force full refinement when two surfaces coincide).
-  const double slack = 1e-3 * step;
-  size_t queries = 0;
-  for (const auto& [ub0, t0] : order) {
-    if (ub0 <= out.max + slack) break;
-    std::vector<std::array<K::Point_3, 3>> stack{{from[t0][0], from[t0][1], from[t0][2]}};
-    while (!stack.empty() && queries < static_cast<size_t>(kMaxSamples)) {
-      const auto t = stack.back();
-      stack.pop_back();
-      double cm = 0;
-      const double ub = upper_bound(t, &cm);
-      queries += 3;
-      out.max = std::max(out.max, cm);
-      if (ub <= out.max + slack) continue;
-      int longest = 0;
-      double len2 = -1;
-      for (int i = 0; i < 3; ++i) {
-        const double l = CGAL::to_double(CGAL::squared_distance(t[i], t[(i + 1) % 3]));
-        if (l > len2) { len2 = l; longest = i; }
-      }
-      if (len2 <= step * step) continue;  // resolved to the requested step
-      const K::Point_3 m = CGAL::midpoint(t[longest], t[(longest + 1) % 3]);
-      stack.push_back({t[longest], m, t[(longest + 2) % 3]});
-      stack.push_back({m, t[(longest + 1) % 3], t[(longest + 2) % 3]});
-    }
-  }
+  // The maximum is the sampled maximum at the (possibly coarsened) step: exact up to that step.
+  // A branch-and-bound refinement was tried and removed: it degenerated on coincident surfaces.
   return out;
 }
 

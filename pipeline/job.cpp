@@ -1,6 +1,8 @@
 #include "pipeline/job.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -366,6 +368,7 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
   const auto start = Clock::now();
   BuildingOutcome out;
   out.id = f.id;
+  if (std::getenv("MC_TRACE")) std::fprintf(stderr, "start %s\n", f.id.c_str());
   out.is_building = mc::io::is_building(f);
   out.feature = std::move(f);
   if (!out.is_building) return out;
