@@ -1,6 +1,7 @@
 #include "core/carve.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <queue>
 #include <unordered_set>
@@ -178,6 +179,43 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     if (c < inside_label.size() && inside_label[c]) res.inside.push_back(c);
   }
   return res;
+}
+
+size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume) {
+  size_t flips = 0;
+  for (int iter = 0; iter < 200; ++iter) {
+    std::sort(inside.begin(), inside.end());
+    std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> uses;  // edge -> (facet, inner cell)
+    for (uint32_t c : inside)
+      for (uint32_t f : cx.cell(c).facets) {
+        const uint32_t o = cx.other_side(f, c);
+        if (o != CellComplex::kNone && std::binary_search(inside.begin(), inside.end(), o)) continue;
+        const auto& loop = cx.facet(f).loop;
+        for (size_t k = 0; k < loop.size(); ++k) {
+          const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+          uses[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)].emplace_back(f, c);
+        }
+      }
+    const std::vector<std::pair<uint32_t, uint32_t>>* pinch = nullptr;
+    for (const auto& [e, inc] : uses)
+      if (inc.size() > 2) {
+        pinch = &inc;
+        break;
+      }
+    if (!pinch) return flips;
+    uint32_t best = CellComplex::kNone;
+    for (const auto& [f, c] : *pinch)
+      for (uint32_t x : {c, cx.other_side(f, c)})
+        if (x != CellComplex::kNone && (best == CellComplex::kNone || cx.cell_volume(x) < cx.cell_volume(best) ||
+                                        (cx.cell_volume(x) == cx.cell_volume(best) && x < best)))
+          best = x;
+    if (best == CellComplex::kNone) return flips;
+    auto it = std::lower_bound(inside.begin(), inside.end(), best);
+    if (it != inside.end() && *it == best) inside.erase(it); else inside.push_back(best);
+    flipped_volume += cx.cell_volume(best);
+    ++flips;
+  }
+  return flips;
 }
 
 std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx, const std::vector<uint32_t>& cells) {

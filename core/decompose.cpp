@@ -125,9 +125,23 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<Work>& parts, double v_
       v_min = std::min(v_min, vol[victim]);  // isolated: keep it, look at larger ones only
       continue;
     }
-    uint32_t target = shared.begin()->first;
-    for (const auto& [p, a] : shared)
-      if (a > shared[target]) target = p;
+    // The neighbour sharing the largest area whose union with the victim stays 2-manifold.
+    std::vector<std::pair<double, uint32_t>> order;
+    for (const auto& [p, a] : shared) order.emplace_back(-a, p);
+    std::sort(order.begin(), order.end());
+    int target = -1;
+    for (const auto& [neg_area, p] : order) {
+      std::vector<uint32_t> merged = parts[p].cells;
+      merged.insert(merged.end(), parts[victim].cells.begin(), parts[victim].cells.end());
+      if (!has_pinch_edge(cx, merged)) {
+        target = static_cast<int>(p);
+        break;
+      }
+    }
+    if (target < 0) {
+      v_min = std::min(v_min, vol[victim]);  // no valid merge: keep it
+      continue;
+    }
     auto& dst = parts[target].cells;
     dst.insert(dst.end(), parts[victim].cells.begin(), parts[victim].cells.end());
     std::sort(dst.begin(), dst.end());
@@ -235,9 +249,10 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       }
       for (Prepared& pr : prepared) pr.input.space = &pr.space;
       std::vector<SearchResult> results(work.size());
-      tbb::parallel_for(size_t(0), work.size(), [&](size_t i) {
+      auto run_one = [&](size_t i) {
         if (prepared[i].search) results[i] = search(prepared[i].input, prepared[i].root);
-      });
+      };
+      tbb::parallel_for(size_t(0), work.size(), run_one);
       std::vector<Work> next;
       for (size_t i = 0; i < work.size(); ++i) {
         if (!prepared[i].search) {

@@ -53,6 +53,23 @@ CellSpace make_space(const CellComplex& cx, const std::vector<uint32_t>& cells) 
   return s;
 }
 
+bool has_pinch_edge(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  std::vector<uint32_t> sorted = cells;
+  std::sort(sorted.begin(), sorted.end());
+  std::unordered_map<uint64_t, int> uses;
+  for (uint32_t c : sorted)
+    for (uint32_t f : cx.cell(c).facets) {
+      const uint32_t o = cx.other_side(f, c);
+      if (o != CellComplex::kNone && std::binary_search(sorted.begin(), sorted.end(), o)) continue;
+      const auto& loop = cx.facet(f).loop;
+      for (size_t k = 0; k < loop.size(); ++k) {
+        const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+        if (++uses[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)] > 2) return true;
+      }
+    }
+  return false;
+}
+
 std::vector<Bits> components(const CellSpace& s, const Bits& bits) {
   std::vector<Bits> out;
   Bits seen(bits.size(), 0);
@@ -295,6 +312,7 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
   std::sort(keys.begin(), keys.end());  // deterministic order
   for (uint64_t key : keys) {
     const auto& inc = by_edge[key];
+    if (inc.size() > 2) info.manifold = false;
     if (inc.size() != 2) continue;
     const uint32_t pa = cx.facet(inc[0].facet).plane, pb = cx.facet(inc[1].facet).plane;
     if (pa == pb) continue;

@@ -74,12 +74,16 @@ struct PartInfo {
   double delta = 0;       // Δ = V_CH − V (0 for convex parts)
   int e_all = 0;          // concave lines with non-negligible weight
   int e_sig = 0;          // lines significant at this level
+  bool manifold = true;   // no boundary edge shared by more than two boundary faces (no pinch)
   std::vector<ConcaveLine> lines;     // reflex lines, by decreasing weight
   std::vector<uint32_t> candidates;   // cutting planes, by decreasing weight
   double convexity() const { return hull_volume > 0 ? volume / hull_volume : 0.0; }
 };
 
 PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve);
+
+// Whether the boundary of a set of cells has an edge used by more than two boundary facets.
+bool has_pinch_edge(const CellComplex& cx, const std::vector<uint32_t>& cells);
 
 // Connected components (through shared facets) of the cells of `bits`, ascending by first cell.
 std::vector<Bits> components(const CellSpace& s, const Bits& bits);

@@ -101,8 +101,16 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   out.truncated = cr.truncated;
   if (cr.inside.empty()) throw std::runtime_error("no interior: the oracle found no inside cell");
 
-  // Singleton cells: every face-connected component of the interior cells.
-  auto comps = connected_components(*out.complex, cr.inside);
+  // Singleton cells: every face-connected component of the interior cells, after making the
+  // interior 2-manifold along edges (a solid touching itself along an edge is no valid solid).
+  std::vector<uint32_t> inside = cr.inside;
+  double flipped = 0;
+  if (const size_t n = remove_pinch_edges(*out.complex, inside, flipped))
+    out.problems.push_back("changed the side of " + std::to_string(n) + " cell(s) at pinch edges (volume " +
+                           std::to_string(flipped) + ") to make the singleton cell 2-manifold");
+  std::sort(inside.begin(), inside.end());
+  if (inside.empty()) throw std::runtime_error("no interior left after removing pinch edges");
+  auto comps = connected_components(*out.complex, inside);
   double total = 0;
   std::vector<SingletonComponent> sc;
   for (auto& c : comps) {

@@ -151,7 +151,7 @@ class Search {
         if (same_plane_in_box(g, in_.space->cx->planes()[id], in_.ctx.angle_rad, in_.ctx.dist, in_.ctx.box)) return id;
       return std::nullopt;
     };
-    tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
+    auto body = [&](size_t i) {
       const auto [p, c] = todo[i];
       const Bits& bits = arena_[p].bits;
       const Bits& pos = in_.positive[pool_index_.at(c)];
@@ -166,9 +166,14 @@ class Search {
       if (!any_a || !any_b) return;  // the plane does not cut this part
       for (const Bits* side : {&a, &b})
         for (Bits& comp : components(*in_.space, *side)) pieces[i].push_back(analyze_part(*in_.space, std::move(comp), in_.ctx, lookup));
-    });
+    };
+    tbb::parallel_for(size_t(0), todo.size(), body);
     for (size_t i = 0; i < todo.size(); ++i) {
       std::vector<uint32_t> ids;
+      // A cut leaving a piece that touches itself along an edge gives no valid solid: reject it.
+      bool valid = true;
+      for (const PartInfo& info : pieces[i]) valid = valid && info.manifold;
+      if (!valid) pieces[i].clear();
       for (PartInfo& info : pieces[i]) ids.push_back(intern(std::move(info)));
       splits_[todo[i]] = std::move(ids);
     }

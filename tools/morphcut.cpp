@@ -9,6 +9,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -153,6 +154,21 @@ int main(int argc, char** argv) {
                             {"up_axis", pre.up_axis == 1 ? "y" : "z"}, {"problems", problems}};
     double volume = 0;
     for (const auto& c : pre.components) volume += c.volume;
+    {  // fingerprint of the complex (bit-exact vertices and interior cells): determinism checks
+      uint64_t h = 1469598103934665603ULL;
+      auto mixin = [&h](uint64_t x) { h = (h ^ x) * 1099511628211ULL; };
+      for (size_t v = 0; v < pre.complex->num_vertices(); ++v) {
+        const mc::Vec3& q = pre.complex->point(static_cast<uint32_t>(v));
+        uint64_t b[3];
+        std::memcpy(b, &q, sizeof b);
+        mixin(b[0]); mixin(b[1]); mixin(b[2]);
+      }
+      for (const auto& c : pre.components)
+        for (uint32_t x : c.cells) mixin(x);
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+      report["preprocess"]["fingerprint"] = buf;
+    }
     report["preprocess"]["volume"] = volume;
     if (pre.truncated) {
       report["status"] = "partial";

@@ -164,10 +164,9 @@ TEST(Run, ThreadCountDoesNotChangeAByteOfTheOutputs) {
 }
 
 // Two runs in one process must agree too (a library user runs many tiles in one process).
-// DISABLED: core's decompose currently keeps state across calls (the same building decomposes
-// differently on a second call, even on one thread; e.g. NL.IMBAG.Pand.0503100000004506 at
-// level 0.001). Enable once core is fixed; the pipeline itself holds no state between runs.
-TEST(Run, DISABLED_RepeatedRunsInOneProcessAreIdentical) {
+// This once failed: CGAL's hull facets come in an address-dependent order and the hull volume
+// was summed in that order (fixed in core/hull.cpp).
+TEST(Run, RepeatedRunsInOneProcessAreIdentical) {
   MC_REQUIRE_DATA(tile, "upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.jsonl");
   mc::test::TempDir dir("run_repeat");
   const std::string input = head_of_sequence(tile, 16, dir / "head16.city.jsonl");
