@@ -97,6 +97,10 @@ InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
     throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
 }
 
+void InsideOracle::set_merge_distance(double t) {
+  if (t > 0) impl_->dedup_t = t;
+}
+
 InsideOracle::~InsideOracle() = default;
 
 int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {

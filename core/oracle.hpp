@@ -31,6 +31,9 @@ class InsideOracle {
   // t merged, so a ray through a shared edge counts once). Exposed for tests and diagnostics.
   int count_crossings(const Vec3& p, const Vec3& dir) const;
   const BBox& bbox() const { return box_; }
+  // Hits closer than `t` along a ray count as one crossing. Preprocessing sets it to δ: surfaces
+  // within the model tolerance are one surface (duplicate or doubled walls), as in plane merging.
+  void set_merge_distance(double t);
 
  private:
   struct Impl;

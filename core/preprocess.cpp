@@ -73,11 +73,21 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     if (out.plane_label[id] < 0) out.plane_label[id] = r.semantic;
     cps.push_back({id, r.bbox});
   }
+  // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
+  // which would otherwise leave the cell hanging down to the padded box.
+  {
+    const uint32_t id = out.planes.add({{0, 0, 1}, -out.box.lo.z}, PlaneOrigin::Region);
+    if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
+    if (out.plane_label[id] < 0) out.plane_label[id] = mesh.label_index("GroundSurface");
+    out.labels = mesh.semantic_labels;
+    cps.push_back({id, out.box});
+  }
 
   // Oracle and carving.
   const TriangleSoup tris = triangulate(mesh);
   if (tris.triangles.empty()) throw std::runtime_error("degenerate geometry: nothing to triangulate");
   InsideOracle oracle(tris, p.oracle_rays, p.seed);
+  oracle.set_merge_distance(out.dist);
   CarveParams cp;
   cp.cell_size = out.cell_size;
   cp.dist = out.dist;

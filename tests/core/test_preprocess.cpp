@@ -1,0 +1,138 @@
+// Preprocessing on synthetic buildings, clean and with injected defects (issue 3): the singleton
+// cell must be closed, 2-manifold and within 2x the sampling interval of the clean building's.
+#include "core/preprocess.hpp"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <random>
+
+#include "buildings.hpp"
+#include "core/decompose.hpp"
+#include "core/hausdorff.hpp"
+#include "core/soup.hpp"
+
+namespace mc {
+namespace {
+
+constexpr double kCell = 0.5;
+
+Preprocessed run(const PolygonMesh& m) {
+  PreprocessParams p;
+  p.cell_size = kCell;
+  p.dist_thresh = kCell / 4;
+  p.compute_hausdorff = true;
+  return preprocess(m, p, Clock::now() + std::chrono::seconds(60));
+}
+
+double distance_between_cells(const Preprocessed& a, const Preprocessed& b) {
+  return hausdorff(triangulate(singleton_mesh(a)), triangulate(singleton_mesh(b)), kCell / 4).symmetric;
+}
+
+using Defect = std::function<PolygonMesh(PolygonMesh)>;
+
+PolygonMesh open_bottom(PolygonMesh m) {
+  const int ground = m.label_index("GroundSurface");
+  std::erase_if(m.faces, [&](const Polygon& f) { return f.semantic == ground; });
+  return m;
+}
+PolygonMesh flip_30_percent(PolygonMesh m) {
+  for (size_t i = 0; i < m.faces.size(); i += 3)
+    for (auto& r : m.faces[i].rings) std::reverse(r.begin(), r.end());
+  return m;
+}
+PolygonMesh duplicate_faces(PolygonMesh m) {
+  const size_t n = m.faces.size();
+  for (size_t i = 0; i < n; i += 2) m.faces.push_back(m.faces[i]);
+  return m;
+}
+PolygonMesh missing_wall(PolygonMesh m) {
+  const int wall = m.label_index("WallSurface");
+  for (size_t i = 0; i < m.faces.size(); ++i)
+    if (m.faces[i].semantic == wall) {
+      m.faces.erase(m.faces.begin() + static_cast<long>(i));
+      break;
+    }
+  return m;
+}
+PolygonMesh jitter_1mm(PolygonMesh m) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.001, 0.001);
+  for (Vec3& v : m.vertices) v += Vec3{u(rng), u(rng), u(rng)};
+  return m;
+}
+// A second copy of every wall, 1 cm outside and slightly larger, so that the copies cut through
+// the neighbouring walls (self-intersecting duplicate walls).
+PolygonMesh intersecting_duplicate_walls(PolygonMesh m) {
+  const int wall = m.label_index("WallSurface");
+  const size_t n = m.faces.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (m.faces[i].semantic != wall) continue;
+    const auto& ring = m.faces[i].rings[0];
+    Vec3 c, nrm;
+    for (size_t k = 0; k < ring.size(); ++k) {
+      c += m.vertices[ring[k]];
+      nrm += cross(m.vertices[ring[k]], m.vertices[ring[(k + 1) % ring.size()]]);
+    }
+    c = c / static_cast<double>(ring.size());
+    nrm = normalized(nrm);
+    Polygon copy{{{}}, wall};
+    for (uint32_t v : ring) {
+      m.vertices.push_back(c + (m.vertices[v] - c) * 1.05 + nrm * 0.01);
+      copy.rings[0].push_back(static_cast<uint32_t>(m.vertices.size() - 1));
+    }
+    m.faces.push_back(copy);
+  }
+  return m;
+}
+
+struct Case {
+  const char* name;
+  PolygonMesh (*building)();
+};
+
+class Preprocess : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Preprocess, CleanBuildingGivesItsExactClosedCell) {
+  const PolygonMesh m = GetParam().building();
+  const Preprocessed pre = run(m);
+  EXPECT_TRUE(pre.closed);
+  EXPECT_TRUE(pre.manifold);
+  ASSERT_EQ(pre.components.size(), 1u);
+  EXPECT_LT(pre.hausdorff, 1e-6);  // every input plane is used: the cell is the building
+}
+
+TEST_P(Preprocess, DefectsKeepTheCellClosedAndClose) {
+  const PolygonMesh clean = GetParam().building();
+  const Preprocessed ref = run(clean);
+  const std::pair<const char*, Defect> defects[] = {
+      {"open bottom", open_bottom},       {"30% flipped faces", flip_30_percent},
+      {"duplicated faces", duplicate_faces}, {"missing wall face", missing_wall},
+      {"1 mm jitter", jitter_1mm},        {"intersecting duplicate walls", intersecting_duplicate_walls}};
+  for (const auto& [name, defect] : defects) {
+    SCOPED_TRACE(name);
+    const Preprocessed pre = run(defect(clean));
+    EXPECT_TRUE(pre.closed);
+    EXPECT_TRUE(pre.manifold);
+    EXPECT_LE(distance_between_cells(pre, ref), 2 * kCell);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Synthetic, Preprocess,
+                         ::testing::Values(Case{"box", test::box_building}, Case{"L", test::l_building},
+                                           Case{"U", test::u_building}, Case{"courtyard", test::courtyard_building},
+                                           Case{"stepped_tower", test::stepped_tower}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Preprocess, EmptyAndDegenerateInputsThrowClearErrors) {
+  PreprocessParams p;
+  const auto deadline = Clock::now() + std::chrono::seconds(10);
+  EXPECT_THROW(preprocess(PolygonMesh{}, p, deadline), std::runtime_error);
+  PolygonMesh flat;
+  flat.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  flat.faces.push_back({{{0, 1, 2}}, -1});
+  EXPECT_THROW(preprocess(flat, p, deadline), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace mc
