@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <unordered_map>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -58,6 +59,10 @@ struct InsideOracle::Impl {
   RTCScene scene = nullptr;
   Vec3 origin;        // soup bbox centre: Embree works in float, so coordinates are centred
   double dedup_t = 0; // hits closer than this along a ray are one crossing
+  // Parity group per triangle: each closed connected shell is its own group, every open piece
+  // shares group 0. A point is inside if it is inside any group (union of overlapping shells).
+  std::vector<uint32_t> group;
+  uint32_t groups = 1;
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
   }
@@ -71,6 +76,7 @@ InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
   impl_->origin = box_.center();
   impl_->dedup_t = 1e-5 * std::max(box_.diagonal(), 1e-9);
 
+  assign_groups(soup);
   RTCDevice device = shared_device();
   impl_->scene = rtcNewScene(device);
   rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
@@ -95,6 +101,42 @@ InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
   rtcCommitScene(impl_->scene);
   if (const RTCError err = rtcGetDeviceError(device); err != RTC_ERROR_NONE)
     throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
+}
+
+void InsideOracle::assign_groups(const TriangleSoup& soup) {
+  const size_t n = soup.triangles.size();
+  std::vector<uint32_t> parent(n);
+  for (uint32_t i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::unordered_map<uint64_t, std::vector<uint32_t>> edges;
+  for (uint32_t t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = soup.triangles[t][k], b = soup.triangles[t][(k + 1) % 3];
+      auto& e = edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+      if (!e.empty()) parent[find(t)] = find(e.front());
+      e.push_back(t);
+    }
+  std::vector<uint8_t> open(n, 0);
+  for (const auto& [key, ts] : edges)
+    if (ts.size() % 2) open[find(ts.front())] = 1;
+  std::vector<uint32_t> id(n, UINT32_MAX);
+  impl_->group.assign(n, 0);
+  impl_->groups = 1;
+  for (uint32_t t = 0; t < n; ++t) {
+    const uint32_t r = find(t);
+    if (open[r]) continue;
+    if (id[r] == UINT32_MAX) id[r] = impl_->groups++;
+    impl_->group[t] = id[r];
+  }
+  // One closed shell (plus open pieces): plain parity over everything, so that doubled or
+  // loose faces still merge with the shell's crossings within the merge distance.
+  if (impl_->groups <= 2) {
+    impl_->groups = 1;
+    std::fill(impl_->group.begin(), impl_->group.end(), 0);
+  }
 }
 
 void InsideOracle::set_merge_distance(double t) {
@@ -134,15 +176,37 @@ int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
   });
   hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
              hits.end());
-  std::sort(hits.begin(), hits.end());
   const double scale = 1.0 / norm(dir);  // t is in units of |dir|
-  int count = 1;
-  float last = hits[0].first;
-  for (size_t i = 1; i < hits.size(); ++i) {
-    if ((hits[i].first - last) / scale > impl_->dedup_t) ++count;
-    last = hits[i].first;
+  if (impl_->groups == 1) {
+    std::sort(hits.begin(), hits.end());
+    int count = 1;
+    float last = hits[0].first;
+    for (size_t i = 1; i < hits.size(); ++i) {
+      if ((hits[i].first - last) / scale > impl_->dedup_t) ++count;
+      last = hits[i].first;
+    }
+    return count;
   }
-  return count;
+  // Several closed shells: crossings counted per parity group; the result is odd (inside) when
+  // the point is inside any group.
+  std::sort(hits.begin(), hits.end(), [&](const auto& a, const auto& b) {
+    const uint32_t ga = impl_->group[a.second], gb = impl_->group[b.second];
+    return ga != gb ? ga < gb : a.first < b.first;
+  });
+  bool any_odd = false;
+  for (size_t i = 0; i < hits.size();) {
+    const uint32_t g = impl_->group[hits[i].second];
+    int count = 1;
+    float last = hits[i].first;
+    size_t j = i + 1;
+    for (; j < hits.size() && impl_->group[hits[j].second] == g; ++j) {
+      if ((hits[j].first - last) / scale > impl_->dedup_t) ++count;
+      last = hits[j].first;
+    }
+    any_odd |= (count & 1) != 0;
+    i = j;
+  }
+  return any_odd ? 1 : 2;
 }
 
 bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {

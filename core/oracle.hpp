@@ -29,6 +29,8 @@ class InsideOracle {
 
   // Number of distinct surface crossings along the ray p + t·dir, t > 0 (hits at nearly equal
   // t merged, so a ray through a shared edge counts once). Exposed for tests and diagnostics.
+  // With several closed shells the count is reduced to its parity over the union (1 = inside some
+  // shell, 2 = none).
   int count_crossings(const Vec3& p, const Vec3& dir) const;
   const BBox& bbox() const { return box_; }
   // Hits closer than `t` along a ray count as one crossing. Preprocessing sets it to δ: surfaces
@@ -36,6 +38,7 @@ class InsideOracle {
   void set_merge_distance(double t);
 
  private:
+  void assign_groups(const TriangleSoup& soup);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   BBox box_;
