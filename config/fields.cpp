@@ -35,6 +35,7 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "max_candidates", &d.max_candidates},
       {"decompose", "node_budget", &d.node_budget},
       {"decompose", "significance_max", &d.significance_max},
+      {"decompose", "split_chains", &d.split_chains},
       {"decompose", "merge_tiny_parts", &d.merge_tiny_parts},
       {"", "timeout_s", &p.timeout_s},
       {"", "threads", &p.threads},

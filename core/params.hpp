@@ -49,6 +49,9 @@ struct DecomposeParams {
   int64_t node_budget = 20000;   // expanded nodes per search
   bool significance_max = true;  // D(e) = max over samples (paper) instead of mean (RC)
   bool merge_tiny_parts = true;
+  // Concave-line grouping: true splits a plane pair's edges into connected chains (algorithm.md
+  // §4.2 REC); false groups every edge of a plane pair into one line, as the research code does.
+  bool split_chains = true;
 };
 
 struct Params {

@@ -130,7 +130,7 @@ struct RawLine {
 };
 
 // Groups edges by (plane pair, reflex) and splits each group into chains of edges sharing vertices.
-std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralEdge>& edges) {
+std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralEdge>& edges, bool split_chains) {
   const PlaneRegistry& reg = s.cx->planes();
   std::map<std::tuple<uint32_t, uint32_t, bool>, std::vector<size_t>> groups;
   for (size_t i = 0; i < edges.size(); ++i) groups[{edges[i].p1, edges[i].p2, edges[i].reflex}].push_back(i);
@@ -148,6 +148,7 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
       for (uint32_t v : {edges[idx[k]].a, edges[idx[k]].b}) {
         auto [it, fresh] = at_vertex.emplace(v, k);
         if (!fresh) parent[find(k)] = find(it->second);
+        if (!split_chains) parent[find(k)] = find(0);  // research-code grouping: one line per plane pair
       }
     }
     std::map<size_t, std::vector<size_t>> chains;
@@ -312,7 +313,7 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
   std::sort(keys.begin(), keys.end());  // deterministic order
   for (uint64_t key : keys) {
     const auto& inc = by_edge[key];
-    if (inc.size() > 2) info.manifold = false;
+    if (inc.size() > 2) ++info.pinch_edges;
     if (inc.size() != 2) continue;
     const uint32_t pa = cx.facet(inc[0].facet).plane, pb = cx.facet(inc[1].facet).plane;
     if (pa == pb) continue;
@@ -327,7 +328,7 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
                    angle, reflex};
     edges.push_back(d);
   }
-  std::vector<RawLine> raw = build_lines(s, edges);
+  std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
 
   // Reflex lines above the concavity threshold, weighted by length × depth into the hull.

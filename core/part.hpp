@@ -74,7 +74,7 @@ struct PartInfo {
   double delta = 0;       // Δ = V_CH − V (0 for convex parts)
   int e_all = 0;          // concave lines with non-negligible weight
   int e_sig = 0;          // lines significant at this level
-  bool manifold = true;   // no boundary edge shared by more than two boundary faces (no pinch)
+  int pinch_edges = 0;    // boundary edges shared by more than two boundary faces
   std::vector<ConcaveLine> lines;     // reflex lines, by decreasing weight
   std::vector<uint32_t> candidates;   // cutting planes, by decreasing weight
   double convexity() const { return hull_volume > 0 ? volume / hull_volume : 0.0; }

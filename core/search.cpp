@@ -170,10 +170,11 @@ class Search {
     tbb::parallel_for(size_t(0), todo.size(), body);
     for (size_t i = 0; i < todo.size(); ++i) {
       std::vector<uint32_t> ids;
-      // A cut leaving a piece that touches itself along an edge gives no valid solid: reject it.
-      bool valid = true;
-      for (const PartInfo& info : pieces[i]) valid = valid && info.manifold;
-      if (!valid) pieces[i].clear();
+      // A cut that leaves a piece touching itself along a new edge gives no valid solid: reject
+      // cuts that add pinch edges (a root that already has some may still be cut).
+      int pinches = 0;
+      for (const PartInfo& info : pieces[i]) pinches += info.pinch_edges;
+      if (pinches > arena_[todo[i].first].pinch_edges) pieces[i].clear();
       for (PartInfo& info : pieces[i]) ids.push_back(intern(std::move(info)));
       splits_[todo[i]] = std::move(ids);
     }
