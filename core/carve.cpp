@@ -20,14 +20,17 @@ bool crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delt
   const BBox cb = cx.cell_bbox(c);
   if (!boxes_overlap(cb, q.bbox, 3 * delta)) return false;
   const Plane& pl = cx.planes()[q.plane];
-  bool pos = false, neg = false;
+  // A plane passing within δ/10 of a vertex without going through it would create vertices a
+  // hair apart (they collapse when the output is quantised): not offered to this cell.
+  const double hair = 0.1 * delta, on = 1e-9 * (1 + std::abs(pl.d));
+  bool pos = false, neg = false, near = false;
   for (uint32_t v : cx.cell_vertices(c)) {
     const double s = pl.signed_distance(cx.point(v));
     pos |= s > delta;
     neg |= s < -delta;
-    if (pos && neg) return true;
+    near |= std::abs(s) > on && std::abs(s) < hair;
   }
-  return false;
+  return pos && neg && !near;
 }
 
 uint64_t mix(uint64_t x) {

@@ -189,6 +189,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   out.size.inside_cells = pre.inside_cells;
   out.size.components = pre.components.size();
   out.size.dropped_components = pre.dropped_components;
+  out.size.cell_closed = pre.closed;
+  out.size.cell_manifold = pre.manifold;
   if (pre.hausdorff >= 0) out.hausdorff = pre.hausdorff;
   add_problems(out.problems, pre.problems);
   if (pre.components.empty()) throw std::runtime_error("preprocessing produced no interior cells");

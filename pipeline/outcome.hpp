@@ -40,6 +40,7 @@ struct Timings {
 struct Sizes {
   size_t input_faces = 0, input_vertices = 0, regions = 0, planes = 0, cells = 0, inside_cells = 0;
   size_t components = 0, dropped_components = 0;
+  bool cell_closed = false, cell_manifold = false;  // the singleton cell (preprocessing)
   int concave_edges = 0;
   size_t parts_written = 0, output_vertices_added = 0, dropped_faces = 0;
 };

@@ -64,6 +64,8 @@ json building_report(const BuildingOutcome& b) {
                 {"inside_cells", b.size.inside_cells},
                 {"components", b.size.components},
                 {"dropped_components", b.size.dropped_components},
+                {"cell_closed", b.size.cell_closed},
+                {"cell_manifold", b.size.cell_manifold},
                 {"concave_edges", b.size.concave_edges},
                 {"parts_written", b.size.parts_written},
                 {"vertices_added", b.size.output_vertices_added},
