@@ -174,6 +174,11 @@ int main(int argc, char** argv) {
       report["status"] = "partial";
       report["reason"] = "carving stopped by the deadline or the cell limit";
     }
+    if (cmd == "preprocess") {  // concave edges of the singleton cell (no search)
+      mc::DecomposeParams none = params.dec;
+      none.levels.clear();
+      report["preprocess"]["concave_edges"] = mc::decompose(pre, none, deadline).concave_edges;
+    }
     if (cmd == "decompose") {
       const mc::Decomposition d = mc::decompose(pre, params.dec, deadline);
       report["preprocess"]["concave_edges"] = d.concave_edges;
