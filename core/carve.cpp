@@ -1,5 +1,7 @@
 #include "core/carve.hpp"
 
+#include "core/surface.hpp"
+
 #include <algorithm>
 #include <map>
 #include <cmath>
@@ -188,17 +190,7 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
   size_t flips = 0;
   for (int iter = 0; iter < 200; ++iter) {
     std::sort(inside.begin(), inside.end());
-    std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> uses;  // edge -> (facet, inner cell)
-    for (uint32_t c : inside)
-      for (uint32_t f : cx.cell(c).facets) {
-        const uint32_t o = cx.other_side(f, c);
-        if (o != CellComplex::kNone && std::binary_search(inside.begin(), inside.end(), o)) continue;
-        const auto& loop = cx.facet(f).loop;
-        for (size_t k = 0; k < loop.size(); ++k) {
-          const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
-          uses[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)].emplace_back(f, c);
-        }
-      }
+    const auto uses = boundary_edge_uses(cx, inside);  // edge -> (facet, inner cell)
     const std::vector<std::pair<uint32_t, uint32_t>>* pinch = nullptr;
     for (const auto& [e, inc] : uses)
       if (inc.size() > 2) {

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "core/hull.hpp"
+#include "core/surface.hpp"
 
 namespace mc {
 
@@ -54,19 +55,8 @@ CellSpace make_space(const CellComplex& cx, const std::vector<uint32_t>& cells) 
 }
 
 bool has_pinch_edge(const CellComplex& cx, const std::vector<uint32_t>& cells) {
-  std::vector<uint32_t> sorted = cells;
-  std::sort(sorted.begin(), sorted.end());
-  std::unordered_map<uint64_t, int> uses;
-  for (uint32_t c : sorted)
-    for (uint32_t f : cx.cell(c).facets) {
-      const uint32_t o = cx.other_side(f, c);
-      if (o != CellComplex::kNone && std::binary_search(sorted.begin(), sorted.end(), o)) continue;
-      const auto& loop = cx.facet(f).loop;
-      for (size_t k = 0; k < loop.size(); ++k) {
-        const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
-        if (++uses[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)] > 2) return true;
-      }
-    }
+  for (const auto& [edge, facets] : boundary_edge_uses(cx, cells))
+    if (facets.size() > 2) return true;
   return false;
 }
 

@@ -60,6 +60,19 @@ std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx
   return out;
 }
 
+std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_uses(const CellComplex& cx,
+                                                                                  const std::vector<uint32_t>& cells) {
+  std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> uses;
+  for (auto [f, c] : boundary_facets(cx, cells)) {
+    const auto& loop = cx.facet(f).loop;
+    for (size_t k = 0; k < loop.size(); ++k) {
+      const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+      uses[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)].emplace_back(f, c);
+    }
+  }
+  return uses;
+}
+
 Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
   Surface s;
   // 1. Directed boundary edges grouped by (plane, outward side); opposite pairs cancel, which

@@ -3,6 +3,7 @@
 // face needs them (architecture.md §2, "the output surface of a part").
 #pragma once
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "core/complex.hpp"
@@ -29,6 +30,11 @@ std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx
 
 // `solid` (optional, sorted): the enclosing solid's cells; faces whose other side is in it are
 // cut faces (kept apart from coplanar exterior faces when merging).
+// Undirected boundary edges of `cells` (key: min << 32 | max vertex id), each with the boundary
+// facets (facet, cell) using it; more than two uses = a pinch edge (cells touching along it).
+std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_uses(const CellComplex& cx,
+                                                                                  const std::vector<uint32_t>& cells);
+
 Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells,
                         const std::vector<uint32_t>* solid = nullptr);
 
