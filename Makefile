@@ -27,7 +27,10 @@ demo: build
 	@echo "demo outputs in $(DEMO_OUT)/: demo.morphcut.city.json, demo.morphcut.report.json, demo.morphcut.csv"
 
 bench: build
-	@bash tools/bench-all.sh $(BUILD)
+	@$(BUILD)/tools/bench_cityjson_io
+	@tools/bench-samples $(BUILD)
+	@tools/bench-preprocess $(BUILD)
+	@bash tools/bench_city.sh --bin $(BUILD)/tools/morphcut-city
 
 test-sanitize: deps
 	@cmake -S . -B $(BUILD)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMC_SANITIZE=ON -DMC_BUILD_BENCH=OFF >/dev/null
