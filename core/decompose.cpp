@@ -292,15 +292,14 @@ namespace {
 PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
   const CellComplex& cx = *pre.complex;
   const Surface s = extract_surface(cx, cells, solid);
-  PolygonMesh m;
-  m.semantic_labels = pre.labels;
-  const int32_t closure = m.label_index("ClosureSurface");
-  m = to_polygon_mesh(cx, s, Vec3{}, [&](const SurfaceFace& f) {
+  PolygonMesh labels;  // the input's labels plus ClosureSurface for cut faces
+  labels.semantic_labels = pre.labels;
+  const int32_t closure = labels.label_index("ClosureSurface");
+  PolygonMesh m = to_polygon_mesh(cx, s, Vec3{}, [&](const SurfaceFace& f) {
     if (f.cut || pre.planes.origin(f.plane) != PlaneOrigin::Region) return closure;
     return pre.label_of_plane(f.plane);
   });
-  m.semantic_labels = pre.labels;
-  m.label_index("ClosureSurface");
+  m.semantic_labels = std::move(labels.semantic_labels);
   for (Vec3& v : m.vertices) v = pre.to_input(v);
   return m;
 }

@@ -1,9 +1,5 @@
 #include "core/hausdorff.hpp"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -15,18 +11,18 @@
 #include <limits>
 #include <vector>
 
+#include "core/aabb_triangles.hpp"
 #include "core/plane.hpp"
 
 namespace mc {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangles = std::vector<K::Triangle_3>;
-using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+using aabb::K;
+using aabb::Primitive;
+using aabb::Tree;
+using aabb::Triangles;
 
-constexpr double kMaxSamples = 4e6;      // hard cap per side (the step is coarsened beyond)
 constexpr size_t kMeanSamples = 20000;   // samples per side at most (the step is coarsened beyond)
 
 K::Point_3 to_point(const Vec3& v, const Vec3& origin) {

@@ -1,20 +1,12 @@
 #include "core/surface_index.hpp"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
-#include <vector>
+#include "core/aabb_triangles.hpp"
 
 namespace mc {
 
-namespace {
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangles = std::vector<K::Triangle_3>;
-using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-}  // namespace
+using aabb::K;
+using aabb::Tree;
+using aabb::Triangles;
 
 struct SurfaceIndex::Impl {
   Triangles triangles;
