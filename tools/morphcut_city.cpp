@@ -12,6 +12,7 @@
 #include "io/errors.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/subcommands.hpp"
 
 namespace {
 
@@ -59,6 +60,10 @@ Exit codes:
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Subcommands come first; anything else is an input path (a file named "validate" can be given
+  // as ./validate).
+  if (argc > 1 && std::string(argv[1]) == "validate") return mc::pipeline::validate_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "merge-reports") return mc::pipeline::merge_reports_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
   std::string input, config_path, output, report, summary, lod;
