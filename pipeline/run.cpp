@@ -24,6 +24,7 @@
 #include "io/cityjson.hpp"
 #include "io/crs.hpp"
 #include "io/temp_registry.hpp"
+#include "pipeline/cache.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/progress.hpp"
@@ -162,6 +163,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
 
   mc::io::CityJsonReader reader(opt.input);
   const mc::io::Header header = reader.header();
+  std::unique_ptr<BuildingCache> cache;
+  if (!opt.cache_dir.empty()) cache = std::make_unique<BuildingCache>(opt.cache_dir, header, params, rc);
   const mc::io::CrsTransformer crs(header.crs);
 
   // All outputs are opened first, so a bad path fails before any work is done.
@@ -210,8 +213,18 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   tbb::flow::limiter_node<Msg> limiter(g, static_cast<size_t>(res.in_flight));
   tbb::flow::function_node<Msg, Msg> job(g, tbb::flow::unlimited, [&](Msg w) -> Msg {
     if (stop.load() || interrupt_signal()) return w;  // nothing will be written: skip the work
-    if (opt.before_job) opt.before_job(w->feature);
-    w->outcome = run_building(std::move(w->feature), header, params, rc);
+    // An exception escaping a job would cancel the whole graph: the building fails instead.
+    try {
+      if (opt.before_job) opt.before_job(w->feature);
+    } catch (const std::exception& e) {
+      w->outcome = failed_building(std::move(w->feature), e.what());
+      return w;
+    } catch (...) {
+      w->outcome = failed_building(std::move(w->feature), "unknown exception");
+      return w;
+    }
+    w->outcome = cache ? cache->run(std::move(w->feature), header, params, rc)
+                       : run_building(std::move(w->feature), header, params, rc);
     return w;
   });
   tbb::flow::sequencer_node<Msg> order(g, [](const Msg& w) { return w->sequence; });
@@ -262,6 +275,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   writer.close();
   if (summary) summary->commit();
   res.reader_problems = reader.problems();
+  if (cache) res.cache = cache->stats();
   res.wall_seconds = since(start);
   res.peak_rss_mb = peak_rss_mb();
   if (report) {
@@ -295,6 +309,14 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         {"features", res.features},
         {"building_count", res.buildings},
         {"counts", counts},
+        {"cache", cache ? ojson{{"dir", cache->dir()},
+                                {"hits", res.cache.hits},
+                                {"misses", res.cache.misses},
+                                {"stored", res.cache.stored},
+                                {"not_stored", res.cache.not_stored},
+                                {"corrupt", res.cache.corrupt},
+                                {"store_errors", res.cache.store_errors}}
+                        : ojson(nullptr)},
         {"crs_for_wgs84", crs.valid() ? ojson(header.crs) : ojson(nullptr)},
         {"reader_problems", res.reader_problems},
         {"dropped_feature_extras", writer.dropped_extras()}};

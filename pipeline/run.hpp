@@ -16,6 +16,7 @@
 #include "config/run_config.hpp"
 #include "core/params.hpp"
 #include "io/cityjson_types.hpp"
+#include "pipeline/cache.hpp"
 
 namespace mc::pipeline {
 
@@ -25,6 +26,7 @@ struct RunOptions {
   std::string report;       // empty = no run report
   std::string summary;      // empty = no summary CSV
   std::string config_file;  // recorded in the report (empty = defaults)
+  std::string cache_dir;    // per-building result cache (pipeline/cache.hpp); empty = none
   bool progress = false;    // draw the progress bar on stderr
   // Install SIGINT/SIGTERM handling (the CLI does). A first signal stops reading and writing,
   // leaves no output file, and the run returns with `interrupted` set; in-flight jobs get a
@@ -43,6 +45,7 @@ struct RunResult {
   int interrupted = 0;  // the signal that stopped the run, or 0
   std::vector<std::string> reader_problems;
   double peak_rss_mb = 0;
+  CacheStats cache;  // zeros without a cache
   // 0 every building ok (or skipped), 1 some failed or partial, 128 + signal when interrupted.
   int exit_code() const;
 };

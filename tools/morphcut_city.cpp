@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "merge-reports") return mc::pipeline::merge_reports_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
-  std::string input, config_path, output, report, summary, lod;
+  std::string input, config_path, output, report, summary, lod, cache_dir;
   int threads = -1;
   double timeout = -1;
   bool quiet = false, no_report = false, no_summary = false;
@@ -82,6 +82,9 @@ int main(int argc, char** argv) {
   app.add_option("--lod", lod, "input LoD to decompose, e.g. 2.2, or `highest` (default: config `lod`)");
   app.add_option("--report", report, "run report JSON (default: <stem>.morphcut.report.json)");
   app.add_option("--summary", summary, "summary CSV (default: <stem>.morphcut.csv)");
+  app.add_option("--cache", cache_dir,
+                 "per-building result cache directory: unchanged buildings (same geometry, config and version) "
+                 "reuse their earlier parts; safe to share between concurrent runs");
   app.add_flag("--no-report", no_report, "do not write the run report");
   app.add_flag("--no-summary", no_summary, "do not write the summary CSV");
   app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
@@ -109,6 +112,7 @@ int main(int argc, char** argv) {
     opt.report = no_report ? "" : (!report.empty() ? report : stem + ".morphcut.report.json");
     opt.summary = no_summary ? "" : (!summary.empty() ? summary : stem + ".morphcut.csv");
     opt.config_file = config_path;
+    opt.cache_dir = cache_dir;
     opt.progress = !quiet && mc::pipeline::stderr_is_tty();
     opt.handle_signals = true;
 
@@ -124,6 +128,9 @@ int main(int argc, char** argv) {
                    r.buildings, r.features, r.wall_seconds, r.wall_seconds > 0 ? r.buildings / r.wall_seconds : 0.0,
                    r.threads, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"), r.counts.at("skipped"),
                    opt.output.c_str());
+      if (!cache_dir.empty())
+        std::fprintf(stderr, "morphcut-city: cache %s: %zu hits, %zu misses, %zu stored\n", cache_dir.c_str(),
+                     r.cache.hits, r.cache.misses, r.cache.stored);
       for (const auto& p : r.reader_problems) std::fprintf(stderr, "morphcut-city: input problem: %s\n", p.c_str());
     }
     return r.exit_code();

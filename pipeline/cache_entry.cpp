@@ -1,0 +1,139 @@
+#include "pipeline/cache_entry.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace mc::pipeline {
+
+using nlohmann::json;
+
+namespace {
+
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json num(const std::optional<double>& v) { return v ? num(*v) : json(nullptr); }
+
+double get_num(const json& j, const char* key) {
+  const json& v = j.at(key);
+  if (v.is_null()) return kNaN;
+  if (!v.is_number()) throw std::runtime_error(std::string("'") + key + "' is not a number");
+  return v.get<double>();
+}
+std::optional<double> get_opt(const json& j, const char* key) {
+  const json& v = j.at(key);
+  if (v.is_null()) return std::nullopt;
+  return get_num(j, key);
+}
+
+}  // namespace
+
+json outcome_to_json(const BuildingOutcome& b) {
+  json levels = json::array();
+  for (const LevelOutcome& l : b.levels)
+    levels.push_back({{"index", l.index},
+                      {"threshold", l.threshold},
+                      {"parts", l.parts},
+                      {"convexity", num(l.convexity)},
+                      {"mean_convexity", num(l.mean_convexity)},
+                      {"min_convexity", num(l.min_convexity)},
+                      {"largest_share", num(l.largest_share)},
+                      {"cost", num(l.cost)},
+                      {"g", num(l.g)},
+                      {"h", num(l.h)},
+                      {"remaining_concave", l.remaining_concave},
+                      {"nodes_expanded", l.nodes_expanded},
+                      {"truncated", l.truncated},
+                      {"fallback", l.fallback},
+                      {"max_degree", l.max_degree},
+                      {"end_parts", l.end_parts}});
+  const Sizes& s = b.size;
+  const Measures& m = b.measures;
+  json centroid = nullptr;
+  if (m.centroid) centroid = json::array({m.centroid->x, m.centroid->y, m.centroid->z});
+  return {{"status", b.status},
+          {"reason", b.reason},
+          {"lod", b.lod},
+          {"hausdorff", num(b.hausdorff)},
+          {"problems", b.problems},
+          {"levels", std::move(levels)},
+          {"sizes",
+           {{"input_faces", s.input_faces},
+            {"input_vertices", s.input_vertices},
+            {"regions", s.regions},
+            {"planes", s.planes},
+            {"cells", s.cells},
+            {"inside_cells", s.inside_cells},
+            {"components", s.components},
+            {"dropped_components", s.dropped_components},
+            {"cell_closed", s.cell_closed},
+            {"cell_manifold", s.cell_manifold},
+            {"concave_edges", s.concave_edges},
+            {"parts_written", s.parts_written},
+            {"output_vertices_added", s.output_vertices_added},
+            {"dropped_faces", s.dropped_faces}}},
+          {"measures",
+           {{"height", num(m.height)},
+            {"footprint_area", num(m.footprint_area)},
+            {"volume", num(m.volume)},
+            {"convexity", num(m.convexity)},
+            {"footprint_method", m.footprint_method},
+            {"centroid", centroid},
+            {"centroid_method", m.centroid_method}}}};
+}
+
+void outcome_from_json(const json& j, BuildingOutcome& b) {
+  b.status = j.at("status").get<std::string>();
+  b.reason = j.at("reason").get<std::string>();
+  b.lod = j.at("lod").get<std::string>();
+  b.hausdorff = get_num(j, "hausdorff");
+  b.problems = j.at("problems").get<std::vector<std::string>>();
+  b.levels.clear();
+  for (const json& lj : j.at("levels")) {
+    LevelOutcome l;
+    l.index = lj.at("index").get<size_t>();
+    l.threshold = lj.at("threshold").get<double>();
+    l.parts = lj.at("parts").get<size_t>();
+    l.convexity = get_num(lj, "convexity");
+    l.mean_convexity = get_num(lj, "mean_convexity");
+    l.min_convexity = get_num(lj, "min_convexity");
+    l.largest_share = get_num(lj, "largest_share");
+    l.cost = get_num(lj, "cost");
+    l.g = get_num(lj, "g");
+    l.h = get_num(lj, "h");
+    l.remaining_concave = lj.at("remaining_concave").get<int>();
+    l.nodes_expanded = lj.at("nodes_expanded").get<int64_t>();
+    l.truncated = lj.at("truncated").get<bool>();
+    l.fallback = lj.at("fallback").get<std::string>();
+    l.max_degree = lj.at("max_degree").get<int>();
+    l.end_parts = lj.at("end_parts").get<int>();
+    b.levels.push_back(std::move(l));
+  }
+  const json& sj = j.at("sizes");
+  Sizes& s = b.size;
+  s.input_faces = sj.at("input_faces").get<size_t>();
+  s.input_vertices = sj.at("input_vertices").get<size_t>();
+  s.regions = sj.at("regions").get<size_t>();
+  s.planes = sj.at("planes").get<size_t>();
+  s.cells = sj.at("cells").get<size_t>();
+  s.inside_cells = sj.at("inside_cells").get<size_t>();
+  s.components = sj.at("components").get<size_t>();
+  s.dropped_components = sj.at("dropped_components").get<size_t>();
+  s.cell_closed = sj.at("cell_closed").get<bool>();
+  s.cell_manifold = sj.at("cell_manifold").get<bool>();
+  s.concave_edges = sj.at("concave_edges").get<int>();
+  s.parts_written = sj.at("parts_written").get<size_t>();
+  s.output_vertices_added = sj.at("output_vertices_added").get<size_t>();
+  s.dropped_faces = sj.at("dropped_faces").get<size_t>();
+  const json& mj = j.at("measures");
+  Measures& m = b.measures;
+  m.height = get_opt(mj, "height");
+  m.footprint_area = get_opt(mj, "footprint_area");
+  m.volume = get_opt(mj, "volume");
+  m.convexity = get_opt(mj, "convexity");
+  m.footprint_method = mj.at("footprint_method").get<std::string>();
+  const json& c = mj.at("centroid");
+  if (c.is_null()) m.centroid.reset();
+  else m.centroid = Vec3{c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()};
+  m.centroid_method = mj.at("centroid_method").get<std::string>();
+}
+
+}  // namespace mc::pipeline
