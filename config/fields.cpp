@@ -37,7 +37,9 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "significance_max", &d.significance_max},
       {"decompose", "split_chains", &d.split_chains},
       {"decompose", "merge_tiny_parts", &d.merge_tiny_parts},
+      {"decompose", "merge_convex_parts", &d.merge_convex_parts},
       {"", "timeout_s", &p.timeout_s},
+      {"", "max_faces", &p.max_faces},
       {"", "threads", &p.threads},
   };
 }

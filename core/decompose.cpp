@@ -149,6 +149,101 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<Work>& parts, double v_
   }
 }
 
+// Merges neighbouring parts while that lowers the level's cost (algorithm.md §6.3 with the
+// whole-building normalisers of §6.8). The search is inflated (σ > 1), keeps only the best
+// children and cuts whole parts by unbounded planes, so it often leaves two convex pieces whose
+// union is still convex (a cut that also went through an unrelated wing), or nearly so. Merging
+// such a pair removes a part at no loss of convexity; a merge is only taken if the union has no
+// concave line significant at this level (the level would cut it again) and stays 2-manifold.
+// Greedy, best decrease first; ties by part index (deterministic).
+void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, std::vector<Work>& work,
+                             const AnalysisContext& ctx, double n_max, double delta0) {
+  const CellComplex& cx = *pre.complex;
+  if (work.size() < 2) return;
+  std::vector<uint32_t> all;
+  for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
+  std::sort(all.begin(), all.end());
+  const CellSpace space = make_space(cx, all);
+  std::unordered_map<uint32_t, uint32_t> local;
+  for (uint32_t i = 0; i < all.size(); ++i) local[all[i]] = i;
+  const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+  const double d0 = delta0 > 0 ? delta0 : 1.0;
+  // Cost change of replacing parts a and b by their union u (|P| drops by one).
+  auto gain = [&](const PartInfo& a, const PartInfo& b, const PartInfo& u) {
+    const double d_delta = u.delta - a.delta - b.delta;
+    const double d_e = u.e_all - a.e_all - b.e_all;
+    return -1.0 / n_max + (p.sigma - 1.0) * d_delta / d0 + p.sigma * d_e / (p.k * n_max);
+  };
+  std::vector<PartInfo> info;
+  std::vector<bool> alive(work.size(), true);
+  for (const Work& w : work) {
+    Bits b(space.words(), 0);
+    for (uint32_t c : w.cells) set_bit(b, local[c]);
+    info.push_back(analyze_part(space, std::move(b), ctx, none));
+  }
+  std::vector<uint32_t> owner(all.size());
+  auto neighbours = [&](uint32_t i) {
+    std::vector<uint32_t> nb;
+    for (uint32_t c : work[i].cells)
+      for (uint32_t f : cx.cell(c).facets) {
+        const uint32_t o = cx.other_side(f, c);
+        if (o == CellComplex::kNone) continue;
+        auto it = local.find(o);
+        if (it != local.end() && owner[it->second] != i) nb.push_back(owner[it->second]);
+      }
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    return nb;
+  };
+  for (uint32_t i = 0; i < work.size(); ++i)
+    for (uint32_t c : work[i].cells) owner[local[c]] = i;
+  // Candidate merges, evaluated lazily and cached until one of the two parts changes.
+  std::map<std::pair<uint32_t, uint32_t>, std::optional<std::pair<double, PartInfo>>> cache;
+  auto evaluate = [&](uint32_t a, uint32_t b) -> const std::optional<std::pair<double, PartInfo>>& {
+    auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+    std::optional<std::pair<double, PartInfo>> r;
+    Bits u = info[a].bits;
+    for (size_t w = 0; w < u.size(); ++w) u[w] |= info[b].bits[w];
+    PartInfo ui = analyze_part(space, std::move(u), ctx, none);
+    const double g = gain(info[a], info[b], ui);
+    if (ui.e_sig == 0 && ui.pinch_edges == 0 && g < -1e-9) r.emplace(g, std::move(ui));
+    return cache.emplace(key, std::move(r)).first->second;
+  };
+  for (size_t guard = 0; guard < work.size(); ++guard) {
+    double best = 0;
+    std::pair<uint32_t, uint32_t> pick{0, 0};
+    for (uint32_t a = 0; a < work.size(); ++a) {
+      if (!alive[a]) continue;
+      for (uint32_t b : neighbours(a)) {
+        if (b <= a || !alive[b] || work[a].component != work[b].component) continue;
+        const auto& r = evaluate(a, b);
+        if (r && r->first < best - 1e-12) {
+          best = r->first;
+          pick = {a, b};
+        }
+      }
+    }
+    if (best == 0) break;
+    const auto [a, b] = pick;
+    PartInfo merged = cache[{a, b}]->second;
+    work[a].cells.insert(work[a].cells.end(), work[b].cells.begin(), work[b].cells.end());
+    std::sort(work[a].cells.begin(), work[a].cells.end());
+    for (uint32_t c : work[b].cells) owner[local[c]] = a;
+    work[b].cells.clear();
+    alive[b] = false;
+    info[a] = std::move(merged);
+    for (auto it = cache.begin(); it != cache.end();)
+      it = (it->first.first == a || it->first.second == a || it->first.first == b || it->first.second == b)
+               ? cache.erase(it) : std::next(it);
+  }
+  std::vector<Work> kept;
+  for (uint32_t i = 0; i < work.size(); ++i)
+    if (alive[i]) kept.push_back(std::move(work[i]));
+  work = std::move(kept);
+}
+
 // Whole-building statistics of a level (normalised by the singleton cell R, algorithm.md §6.8).
 void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& work,
                       const AnalysisContext& ctx, double n_max, double delta0, LevelResult& out) {
@@ -275,6 +370,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       }
       work = std::move(next);
       if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
+      if (p.merge_convex_parts) merge_convex_neighbours(pre, p, work, ctx, n_max, delta0);
     } else {
       out.partial = true;
       if (out.reason.empty()) out.reason = "deadline reached before LoD " + std::to_string(level.lod);

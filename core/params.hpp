@@ -49,6 +49,7 @@ struct DecomposeParams {
   int64_t node_budget = 20000;   // expanded nodes per search
   bool significance_max = true;  // D(e) = max over samples (paper) instead of mean (RC)
   bool merge_tiny_parts = true;
+  bool merge_convex_parts = true;  // after each level, merge neighbours while the level's cost drops
   // Concave-line grouping: true splits a plane pair's edges into connected chains (algorithm.md
   // §4.2 REC); false groups every edge of a plane pair into one line, as the research code does.
   bool split_chains = true;
@@ -58,6 +59,9 @@ struct Params {
   PreprocessParams pre;
   DecomposeParams dec;
   double timeout_s = 60;         // per-building deadline; <= 0 disables
+  // Buildings with more input faces are skipped ("too large"): a mesh error or a whole terrain
+  // filed as one Building would otherwise hold a worker for its whole deadline. 0 = no limit.
+  int64_t max_faces = 50000;
   int threads = 0;               // 0 = all cores
 };
 

@@ -35,10 +35,11 @@ int usage(const char* msg = nullptr) {
   std::cerr << "usage:\n"
                "  morphcut preprocess IN.off|IN.obj [--config FILE] [--out DIR] [--timeout S]\n"
                "  morphcut decompose  IN.off|IN.obj [--config FILE] [--out DIR] [--threads N] [--timeout S]\n"
-               "                      [--levels l1,l2,...]\n"
+               "                      [--levels l1,l2,...] [--set KEY=VALUE ...]\n"
                "Writes DIR/<stem>_singleton.off and, for decompose, DIR/<stem>_lod_<l>.off per level and\n"
                "DIR/<stem>.morphcut.json. --config takes YAML (config/lod.yaml) or the paper's JSON;\n"
-               "default: <IN>_config.json beside the input if present.\n"
+               "default: <IN>_config.json beside the input if present. --set overrides one key of the\n"
+               "effective configuration after it is loaded (YAML path, e.g. decompose.max_candidates=0).\n"
                "Exit codes: 0 ok, 1 partial or failed, 2 usage or I/O error.\n";
   return 2;
 }
@@ -75,6 +76,24 @@ void write_level_off(const std::string& path, const mc::Preprocessed& pre, const
   mc::io::write_off(path, all, colours);
 }
 
+// `--set decompose.split_chains=false`: edits the effective configuration (as JSON, the YAML
+// layout) and reloads it, so every override gets the loader's type and range checks.
+mc::Params apply_sets(const mc::Params& params, const std::vector<std::string>& sets) {
+  nlohmann::json cfg = mc::effective_config_json(params, mc::RunConfig{});
+  for (const std::string& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--set wants KEY=VALUE, got " + s);
+    const std::string key = s.substr(0, eq), text = s.substr(eq + 1);
+    nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+    if (value.is_discarded()) value = text;
+    nlohmann::json* node = &cfg;
+    std::stringstream path(key);
+    for (std::string part; std::getline(path, part, '.');) node = &(*node)[part];
+    *node = value;
+  }
+  return mc::load_config_string(cfg.dump(), "--set").params;
+}
+
 std::string lod_name(double l) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6f", l);
@@ -88,6 +107,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   if (cmd != "preprocess" && cmd != "decompose") return usage("unknown command");
   std::string input = argv[2], config, out = ".", levels;
+  std::vector<std::string> sets;
   double timeout = -1;
   int threads = 0;
   for (int i = 3; i < argc; ++i) {
@@ -102,6 +122,7 @@ int main(int argc, char** argv) {
       else if (a == "--timeout") timeout = std::stod(value());
       else if (a == "--threads") threads = std::stoi(value());
       else if (a == "--levels") levels = value();
+      else if (a == "--set") sets.push_back(value());
       else return usage(("unknown option " + a).c_str());
     } catch (const std::exception& e) {
       return usage(e.what());
@@ -115,6 +136,7 @@ int main(int argc, char** argv) {
       params = config.size() > 5 && config.substr(config.size() - 5) == ".json" ? mc::load_paper_config(config)
                                                                                 : mc::load_config_file(config).params;
     }
+    if (!sets.empty()) params = apply_sets(params, sets);
     if (!levels.empty()) {
       params.dec.levels.clear();
       std::stringstream ss(levels);
