@@ -23,6 +23,7 @@
 #include "config/config.hpp"
 #include "io/cityjson.hpp"
 #include "io/crs.hpp"
+#include "io/feature_source.hpp"
 #include "io/temp_registry.hpp"
 #include "pipeline/cache.hpp"
 #include "pipeline/interrupt.hpp"
@@ -161,7 +162,9 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       return std::ferror(f.get()) ? std::string() : sha.hex();
     });
 
-  mc::io::CityJsonReader reader(opt.input);
+  // CityJSON, CityJSONSeq or CityGML (by extension): the graph below only sees Features.
+  const std::unique_ptr<mc::io::FeatureSource> source_file = mc::io::open_feature_source(opt.input);
+  mc::io::FeatureSource& reader = *source_file;
   const mc::io::Header header = reader.header();
   std::unique_ptr<BuildingCache> cache;
   if (!opt.cache_dir.empty()) cache = std::make_unique<BuildingCache>(opt.cache_dir, header, params, rc);
@@ -293,7 +296,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         {"version", MC_VERSION},
         {"input",
          {{"path", opt.input},
-          {"format", reader.is_sequence() ? "CityJSONSeq" : "CityJSON"},
+          {"format", reader.format()},
           {"version", header.version},
           {"crs", header.crs},
           {"bytes", ec ? ojson(nullptr) : ojson(bytes)},

@@ -26,14 +26,15 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 std::string stem_of(const std::string& input) {
   if (input == "-") return "stdin";
   std::string name = std::filesystem::path(input).filename().string();
-  for (const char* ext : {".city.jsonl", ".city.json", ".jsonl", ".json"})
+  for (const char* ext : {".city.jsonl", ".city.json", ".jsonl", ".json", ".gml.gz", ".xml.gz", ".gml", ".xml"})
     if (ends_with(name, ext) && name.size() > std::string(ext).size()) return name.substr(0, name.size() - std::string(ext).size());
   return name;
 }
 
 const char* kFooter = R"(Outputs (written to the current directory unless given):
   OUTPUT   <stem>.morphcut.city.json (<stem>.morphcut.city.jsonl for CityJSONSeq input):
-           the input unchanged plus, per building and output LoD level, convex BuildingParts
+           the input unchanged (CityGML input: its buildings converted to CityJSON 2.0, see the
+           README) plus, per building and output LoD level, convex BuildingParts
            <building id>-mc<level index>-<part index> with closed Solids, and the attributes
            morphcut_status, morphcut_reason, morphcut_parts, morphcut_levels, morphcut_hausdorff
   REPORT   <stem>.morphcut.report.json: version, effective config, input hash, timings, sizes
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
   int threads = -1;
   double timeout = -1;
   bool quiet = false, no_report = false, no_summary = false;
-  app.add_option("INPUT", input, "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), or - for CityJSONSeq on stdin")
+  app.add_option("INPUT", input, "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), .gml/.xml[.gz] (CityGML 1.0/2.0/3.0 buildings), or - for CityJSONSeq on stdin")
       ->required();
   app.add_option("--config,-c", config_path, "YAML configuration (see config/lod.yaml; unknown keys are rejected)")
       ->check(CLI::ExistingFile);

@@ -7,7 +7,7 @@ PKGS=(
   g++ cmake make ccache pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
   libtbb-dev libembree-dev libgeographiclib-dev libproj-dev
-  nlohmann-json3-dev libyaml-cpp-dev
+  nlohmann-json3-dev libyaml-cpp-dev libxml2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev
 )
