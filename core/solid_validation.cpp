@@ -1,0 +1,478 @@
+#include "core/solid_validation.hpp"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <list>
+#include <map>
+#include <numeric>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+#include "core/hull.hpp"
+
+namespace mc {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+struct FaceInfo {
+  int nesting = -1;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, K>;
+using Fbi = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// Constraints that cross (a bow-tie, two rings crossing) throw instead of being split: that is
+// exactly the ring self-intersection test.
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+std::string fmt(const Vec3& p) {
+  std::ostringstream o;
+  o.precision(12);
+  o << "(" << p.x << " " << p.y << " " << p.z << ")";
+  return o.str();
+}
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(4);
+  o << v;
+  return o.str();
+}
+
+// One error per code: the first occurrence described, the others counted.
+class ErrorLog {
+ public:
+  void add(int code, const std::string& message) {
+    auto [it, fresh] = first_.try_emplace(code, message);
+    ++count_[code];
+    (void)it, (void)fresh;
+  }
+  bool has(int code) const { return count_.count(code) > 0; }
+  // Nothing logged except `code`.
+  bool only(int code) const { return count_.empty() || (count_.size() == 1 && count_.count(code)); }
+  std::vector<SolidError> take() const {
+    std::vector<SolidError> out;
+    for (const auto& [code, msg] : first_) {
+      const size_t n = count_.at(code);
+      out.push_back({code, solid_error_name(code), n > 1 ? msg + " (and " + std::to_string(n - 1) + " more)" : msg});
+    }
+    return out;
+  }
+
+ private:
+  std::map<int, std::string> first_;  // ordered by code: deterministic reports
+  std::map<int, size_t> count_;
+};
+
+// Vertices within `snap` of each other become one (grid hashing, neighbouring cells searched).
+std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged) {
+  const double cell = std::max(snap, 1e-12);
+  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+  auto key = [](int64_t x, int64_t y, int64_t z) {
+    return (static_cast<uint64_t>(x) * 73856093u) ^ (static_cast<uint64_t>(y) * 19349663u) ^ (static_cast<uint64_t>(z) * 83492791u);
+  };
+  std::vector<uint32_t> id(v.size());
+  for (size_t i = 0; i < v.size(); ++i) {
+    const int64_t cx = std::llround(v[i].x / cell), cy = std::llround(v[i].y / cell), cz = std::llround(v[i].z / cell);
+    int64_t found = -1;
+    for (int dx = -1; dx <= 1 && found < 0; ++dx)
+      for (int dy = -1; dy <= 1 && found < 0; ++dy)
+        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+          auto it = grid.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == grid.end()) continue;
+          for (uint32_t m : it->second)
+            if (norm(merged[m] - v[i]) <= snap) {
+              found = m;
+              break;
+            }
+        }
+    if (found < 0) {
+      found = static_cast<int64_t>(merged.size());
+      merged.push_back(v[i]);
+      grid[key(cx, cy, cz)].push_back(static_cast<uint32_t>(found));
+    }
+    id[i] = static_cast<uint32_t>(found);
+  }
+  return id;
+}
+
+// Least-squares plane of points: centroid and the covariance's smallest eigenvector.
+Plane fit_plane(const std::vector<Vec3>& pts) {
+  Vec3 c;
+  for (const auto& p : pts) c += p;
+  c = c / static_cast<double>(pts.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : pts) {
+    const Eigen::Vector3d d(p.x - c.x, p.y - c.y, p.z - c.z);
+    cov += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+  const Eigen::Vector3d n = es.eigenvectors().col(0);
+  Plane pl;
+  pl.n = {n.x(), n.y(), n.z()};
+  pl.d = -dot(pl.n, c);
+  return pl;
+}
+
+// Newell normal of a ring (its length is twice the ring's area).
+Vec3 newell(const std::vector<uint32_t>& ring, const std::vector<Vec3>& v) {
+  Vec3 n;
+  const Vec3& o = v[ring[0]];  // relative coordinates: city coordinates are large
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const Vec3 a = v[ring[i]] - o, b = v[ring[(i + 1) % ring.size()]] - o;
+    n += {(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+  }
+  return n;
+}
+
+void mark_domain(CDT& cdt, CDT::Face_handle start, int nesting, std::list<CDT::Edge>& border) {
+  if (start->info().nesting != -1) return;
+  std::list<CDT::Face_handle> queue{start};
+  while (!queue.empty()) {
+    CDT::Face_handle f = queue.front();
+    queue.pop_front();
+    if (f->info().nesting != -1) continue;
+    f->info().nesting = nesting;
+    for (int i = 0; i < 3; ++i) {
+      CDT::Face_handle n = f->neighbor(i);
+      if (n->info().nesting != -1) continue;
+      if (cdt.is_constrained(CDT::Edge(f, i))) border.emplace_back(f, i);
+      else queue.push_back(n);
+    }
+  }
+}
+
+// Faces at odd nesting depth from the infinite face are inside the polygon (holes excluded).
+void mark_domains(CDT& cdt) {
+  std::list<CDT::Edge> border;
+  mark_domain(cdt, cdt.infinite_face(), 0, border);
+  while (!border.empty()) {
+    const CDT::Edge e = border.front();
+    border.pop_front();
+    CDT::Face_handle n = e.first->neighbor(e.second);
+    if (n->info().nesting == -1) mark_domain(cdt, n, e.first->info().nesting + 1, border);
+  }
+}
+
+struct Frame {
+  Vec3 o, u, v;
+  K::Point_2 operator()(const Vec3& p) const {
+    const Vec3 d = p - o;
+    return {dot(d, u), dot(d, v)};
+  }
+};
+
+Frame frame_for(const Vec3& origin, const Vec3& normal) {
+  const Vec3 n = normalized(normal);
+  const Vec3 a = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 u = normalized(cross(a, n));
+  return {origin, u, cross(n, u)};  // (u, v, n) right-handed: CCW around n is CCW in (u, v)
+}
+
+void insert_ring(CDT& cdt, const std::vector<uint32_t>& ring, const std::vector<Vec3>& pts, const Frame& f) {
+  std::vector<CDT::Vertex_handle> vh;
+  for (uint32_t id : ring) {
+    CDT::Vertex_handle h = cdt.insert(f(pts[id]));
+    h->info() = id;
+    vh.push_back(h);
+  }
+  for (size_t i = 0; i < vh.size(); ++i) {
+    CDT::Vertex_handle a = vh[i], b = vh[(i + 1) % vh.size()];
+    if (a != b) cdt.insert_constraint(a, b);
+  }
+}
+
+double signed_area_2d(const std::vector<uint32_t>& ring, const std::vector<Vec3>& pts, const Frame& f) {
+  double a = 0;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const K::Point_2 p = f(pts[ring[i]]), q = f(pts[ring[(i + 1) % ring.size()]]);
+    a += p.x() * q.y() - q.x() * p.y();
+  }
+  return a / 2;
+}
+
+// Triangulates one planar face with holes in its plane; ring problems go to `log`.
+void triangulate_face(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts, const Vec3& normal,
+                      size_t face, ErrorLog& log, std::vector<std::array<uint32_t, 3>>& out) {
+  const Frame f = frame_for(pts[rings[0][0]], normal);
+  const std::string where = "face " + std::to_string(face);
+  for (size_t r = 0; r < rings.size(); ++r) {
+    CDT single;
+    try {
+      insert_ring(single, rings[r], pts, f);
+    } catch (const CDT::Intersection_of_constraints_exception&) {
+      log.add(solid_code::kRingSelfIntersection, where + ", ring " + std::to_string(r) + " crosses itself");
+      return;
+    }
+    if (r > 0 && signed_area_2d(rings[r], pts, f) > 0)
+      log.add(solid_code::kOrientationRingsSame, where + ": inner ring " + std::to_string(r) + " has the outer ring's orientation");
+  }
+  CDT cdt;
+  try {
+    for (const auto& ring : rings) insert_ring(cdt, ring, pts, f);
+  } catch (const CDT::Intersection_of_constraints_exception&) {
+    log.add(solid_code::kIntersectionRings, where + ": its rings cross each other");
+    return;
+  }
+  mark_domains(cdt);
+  for (auto fh : cdt.finite_face_handles()) {
+    if (fh->info().nesting % 2 != 1) continue;
+    out.push_back({fh->vertex(0)->info(), fh->vertex(1)->info(), fh->vertex(2)->info()});  // CCW in (u, v)
+  }
+}
+
+Mesh to_mesh(const TriangleShell& s, bool& ok) {
+  std::vector<K::Point_3> points;
+  for (const auto& p : s.points) points.emplace_back(p.x, p.y, p.z);
+  std::vector<std::vector<std::size_t>> polys;
+  for (const auto& t : s.triangles) polys.push_back({t[0], t[1], t[2]});
+  Mesh m;
+  ok = PMP::is_polygon_soup_a_polygon_mesh(polys);
+  if (ok) PMP::polygon_soup_to_polygon_mesh(points, polys, m);
+  return m;
+}
+
+// Edge and vertex topology of the rings: closed, 2-manifold, consistently oriented, connected.
+void check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces, const std::vector<Vec3>& pts,
+                    ErrorLog& log) {
+  std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> directed;  // edge -> faces
+  for (size_t fi = 0; fi < faces.size(); ++fi)
+    for (const auto& ring : faces[fi])
+      for (size_t i = 0; i < ring.size(); ++i) directed[{ring[i], ring[(i + 1) % ring.size()]}].push_back(static_cast<uint32_t>(fi));
+  // Faces joined by edges: connected components.
+  std::vector<uint32_t> parent(faces.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto root = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  bool edges_ok = true;
+  for (const auto& [e, fs] : directed) {
+    if (e.first > e.second && directed.count({e.second, e.first})) continue;  // seen from the other side
+    auto back = directed.find({e.second, e.first});
+    const size_t forward = fs.size(), backward = back == directed.end() ? 0 : back->second.size();
+    const std::string edge = fmt(pts[e.first]) + "-" + fmt(pts[e.second]);
+    if (forward + backward == 1) {
+      log.add(solid_code::kShellNotClosed, "edge " + edge + " bounds only face " + std::to_string(fs[0]));
+      edges_ok = false;
+    } else if (forward + backward > 2) {
+      log.add(solid_code::kNonManifoldCase, "edge " + edge + " is shared by " + std::to_string(forward + backward) + " faces");
+      edges_ok = false;
+    } else if (forward == 2 || backward == 2) {
+      const auto& two = forward == 2 ? fs : back->second;
+      log.add(solid_code::kPolygonWrongOrientation, "faces " + std::to_string(two[0]) + " and " + std::to_string(two[1]) +
+                                                        " run along edge " + edge + " in the same direction");
+      edges_ok = false;
+    }
+    std::vector<uint32_t> all = fs;
+    if (back != directed.end()) all.insert(all.end(), back->second.begin(), back->second.end());
+    for (size_t i = 1; i < all.size(); ++i) parent[root(all[i])] = root(all[0]);
+  }
+  std::set<uint32_t> components;
+  for (uint32_t f = 0; f < faces.size(); ++f) components.insert(root(f));
+  if (components.size() > 1)
+    log.add(solid_code::kMultipleComponents, std::to_string(components.size()) + " separate groups of faces");
+  if (!edges_ok) return;
+  // Vertex umbrellas: the face corners at a vertex must link its edges into one cycle.
+  std::map<uint32_t, std::map<uint32_t, uint32_t>> fan;  // vertex -> neighbour -> union-find parent
+  auto find = [](std::map<uint32_t, uint32_t>& uf, uint32_t x) {
+    while (uf[x] != x) x = uf[x] = uf[uf[x]];
+    return x;
+  };
+  for (const auto& face : faces)
+    for (const auto& ring : face)
+      for (size_t i = 0; i < ring.size(); ++i) {
+        const uint32_t v = ring[i], prev = ring[(i + ring.size() - 1) % ring.size()], next = ring[(i + 1) % ring.size()];
+        auto& uf = fan[v];
+        uf.try_emplace(prev, prev);
+        uf.try_emplace(next, next);
+        uf[find(uf, prev)] = find(uf, next);
+      }
+  for (auto& [v, uf] : fan) {
+    std::set<uint32_t> roots;
+    for (auto& [n, p] : uf) roots.insert(find(uf, n));
+    if (roots.size() > 1)
+      log.add(solid_code::kNonManifoldCase, "vertex " + fmt(pts[v]) + " joins " + std::to_string(roots.size()) +
+                                                " separate fans of faces");
+  }
+}
+
+}  // namespace
+
+const char* solid_error_name(int code) {
+  switch (code) {
+    case solid_code::kTooFewPoints: return "TOO_FEW_POINTS";
+    case solid_code::kConsecutivePointsSame: return "CONSECUTIVE_POINTS_SAME";
+    case solid_code::kRingSelfIntersection: return "RING_SELF_INTERSECTION";
+    case solid_code::kRingCollapsed: return "RING_COLLAPSED";
+    case solid_code::kIntersectionRings: return "INTERSECTION_RINGS";
+    case solid_code::kNonPlanarPolygon: return "NON_PLANAR_POLYGON_DISTANCE_PLANE";
+    case solid_code::kOrientationRingsSame: return "ORIENTATION_RINGS_SAME";
+    case solid_code::kTooFewPolygons: return "TOO_FEW_POLYGONS";
+    case solid_code::kShellNotClosed: return "SHELL_NOT_CLOSED";
+    case solid_code::kNonManifoldCase: return "NON_MANIFOLD_CASE";
+    case solid_code::kPolygonWrongOrientation: return "POLYGON_WRONG_ORIENTATION";
+    case solid_code::kMultipleComponents: return "MULTIPLE_CONNECTED_COMPONENTS";
+    case solid_code::kShellSelfIntersection: return "SHELL_SELF_INTERSECTION";
+    case solid_code::kAllPolygonsWrongOrientation: return "ALL_POLYGONS_WRONG_ORIENTATION";
+    default: return "UNKNOWN";
+  }
+}
+
+SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol) {
+  SolidCheck out;
+  ErrorLog log;
+  std::vector<Vec3>& pts = out.shell.points;
+  const std::vector<uint32_t> id = merge_vertices(solid.vertices, tol.snap, pts);
+  for (const auto& p : pts) out.box.add(p);
+
+  // Rings (1xx): merged ids, no repeated consecutive vertex (a repeated first vertex at the
+  // end counts: CityJSON rings are not closed explicitly).
+  std::vector<std::vector<std::vector<uint32_t>>> faces;
+  std::vector<Vec3> normals;
+  for (size_t fi = 0; fi < solid.faces.size(); ++fi) {
+    std::vector<std::vector<uint32_t>> rings;
+    bool face_ok = true;
+    for (size_t r = 0; r < solid.faces[fi].rings.size(); ++r) {
+      const auto& in = solid.faces[fi].rings[r];
+      const std::string where = "face " + std::to_string(fi) + ", ring " + std::to_string(r);
+      std::vector<uint32_t> ring;
+      for (uint32_t v : in) {
+        if (v >= id.size()) {
+          face_ok = false;
+          continue;
+        }
+        ring.push_back(id[v]);
+      }
+      bool repeats = false;
+      for (size_t i = 0; i < ring.size(); ++i) repeats = repeats || ring[i] == ring[(i + 1) % ring.size()];
+      if (repeats) {
+        log.add(solid_code::kConsecutivePointsSame, where + " repeats a vertex consecutively");
+        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+        while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+      }
+      if (ring.size() < 3) {
+        log.add(solid_code::kTooFewPoints, where + " has " + std::to_string(ring.size()) + " distinct points");
+        face_ok = false;
+        continue;
+      }
+      rings.push_back(std::move(ring));
+    }
+    if (!face_ok || rings.empty()) continue;
+    // Polygon (2xx): planarity against the least-squares plane of all its points.
+    std::vector<Vec3> fp;
+    for (const auto& ring : rings)
+      for (uint32_t v : ring) fp.push_back(pts[v]);
+    Vec3 c;
+    for (const auto& p : fp) c += p;
+    c = c / static_cast<double>(fp.size());
+    std::vector<Vec3> local;
+    for (const auto& p : fp) local.push_back(p - c);  // fit in local coordinates (precision)
+    const Plane pl = fit_plane(local);
+    double worst = 0;
+    for (const auto& p : local) worst = std::max(worst, std::abs(pl.signed_distance(p)));
+    const Vec3 n = newell(rings[0], pts);
+    if (norm(n) <= 1e-12) {
+      // No area: a bow-tie (its halves cancel) or a collapsed ring.
+      bool crosses = false;
+      for (const auto& ring : rings) {
+        CDT cdt;
+        try {
+          insert_ring(cdt, ring, pts, frame_for(pts[ring[0]], pl.n));
+        } catch (const CDT::Intersection_of_constraints_exception&) {
+          crosses = true;
+        }
+      }
+      if (crosses) log.add(solid_code::kRingSelfIntersection, "face " + std::to_string(fi) + ": a ring crosses itself");
+      else log.add(solid_code::kRingCollapsed, "face " + std::to_string(fi) + ": the outer ring has no area");
+      continue;
+    }
+    if (worst > tol.planarity)
+      log.add(solid_code::kNonPlanarPolygon, "face " + std::to_string(fi) + ": a point lies " + fmt(worst) +
+                                                 " m from the face's plane (tolerance " + fmt(tol.planarity) + " m)");
+    out.area += norm(n) / 2;
+    faces.push_back(std::move(rings));
+    normals.push_back(n);
+  }
+  for (size_t fi = 0; fi < faces.size(); ++fi)
+    for (size_t r = 1; r < faces[fi].size(); ++r) out.area -= norm(newell(faces[fi][r], pts)) / 2;
+
+  // Shell (3xx): topology on the ring edges, then triangles for volume and intersections.
+  if (faces.size() < 4) log.add(solid_code::kTooFewPolygons, std::to_string(faces.size()) + " valid faces (at least 4 needed)");
+  check_topology(faces, pts, log);
+  for (size_t fi = 0; fi < faces.size(); ++fi) triangulate_face(faces[fi], pts, normals[fi], fi, log, out.shell.triangles);
+
+  // Non-planarity within reason does not stop the shell checks (the faces are triangulated).
+  const bool topology_ok = log.only(solid_code::kNonPlanarPolygon);
+  // Hull and convexity are measures, wanted whatever the validity.
+  const Hull hull = convex_hull(pts);
+  out.hull_volume = hull.volume;
+  out.hull_facets = hull.facets;
+  if (!topology_ok) {
+    out.errors = log.take();
+    return out;
+  }
+  const Vec3 o = out.box.center();
+  double six_v = 0;
+  for (const auto& t : out.shell.triangles) six_v += dot(pts[t[0]] - o, cross(pts[t[1]] - o, pts[t[2]] - o));
+  out.volume = six_v / 6;
+  if (out.hull_volume > 0) out.convexity = std::min(1.0, std::max(0.0, out.volume / out.hull_volume));
+  if (!(out.volume > 0))
+    log.add(solid_code::kAllPolygonsWrongOrientation, "the faces point inwards (signed volume " + fmt(out.volume) + " m³)");
+
+  bool mesh_ok = false;
+  const Mesh m = to_mesh(out.shell, mesh_ok);
+  if (!mesh_ok) {
+    log.add(solid_code::kShellSelfIntersection, "the triangulated faces do not form a 2-manifold surface (faces overlap in their plane)");
+  } else {
+    std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+    PMP::self_intersections(m, std::back_inserter(pairs));
+    if (!pairs.empty()) {
+      const auto tri = [&](Mesh::Face_index f) {
+        Vec3 c;
+        for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+          const auto& p = m.point(v);
+          c += Vec3{p.x(), p.y(), p.z()} / 3.0;
+        }
+        return fmt(c);
+      };
+      log.add(solid_code::kShellSelfIntersection, std::to_string(pairs.size()) + " pairs of triangles intersect, e.g. near " +
+                                                      tri(pairs[0].first) + " and " + tri(pairs[0].second));
+    }
+  }
+  out.closed_manifold = !log.has(solid_code::kShellSelfIntersection) && !log.has(solid_code::kAllPolygonsWrongOrientation);
+  out.errors = log.take();
+  return out;
+}
+
+std::optional<double> common_volume(const TriangleShell& a, const TriangleShell& b) {
+  bool ok_a = false, ok_b = false;
+  Mesh ma = to_mesh(a, ok_a), mb = to_mesh(b, ok_b), common;
+  if (!ok_a || !ok_b) return std::nullopt;
+  try {
+    if (!PMP::corefine_and_compute_intersection(ma, mb, common)) return std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (common.is_empty()) return 0.0;
+  return std::abs(PMP::volume(common));
+}
+
+}  // namespace mc

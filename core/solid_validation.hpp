@@ -1,0 +1,66 @@
+// Validity of one Solid (one closed shell as a polygon mesh in real coordinates), checked in
+// val3dity's hierarchy: rings (1xx), polygons (2xx), shell (3xx). Codes and names are val3dity's
+// (ISO 19107 rules), so a report can be compared with that tool's.
+// CGAL lives only in solid_validation.cpp (compile time).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/plane.hpp"
+#include "core/polygon_mesh.hpp"
+
+namespace mc {
+
+struct SolidError {
+  int code = 0;
+  std::string name;     // e.g. "SHELL_NOT_CLOSED"
+  std::string message;  // what and where (face index, coordinates, measured value)
+};
+
+// val3dity's codes used here.
+namespace solid_code {
+constexpr int kTooFewPoints = 101, kConsecutivePointsSame = 102, kRingSelfIntersection = 104,
+              kRingCollapsed = 105, kIntersectionRings = 201, kNonPlanarPolygon = 203,
+              kOrientationRingsSame = 208, kTooFewPolygons = 301, kShellNotClosed = 302,
+              kNonManifoldCase = 303, kPolygonWrongOrientation = 304, kMultipleComponents = 305,
+              kShellSelfIntersection = 306, kAllPolygonsWrongOrientation = 307;
+}
+const char* solid_error_name(int code);
+
+struct SolidTolerances {
+  double snap = 1e-6;       // vertices closer than this are one vertex (m)
+  double planarity = 1e-3;  // max distance of a face's points to its least-squares plane (m)
+};
+
+// The shell as triangles over merged vertices (faces triangulated in their plane, holes kept),
+// oriented like the input faces.
+struct TriangleShell {
+  std::vector<Vec3> points;
+  std::vector<std::array<uint32_t, 3>> triangles;
+};
+
+struct SolidCheck {
+  std::vector<SolidError> errors;  // empty = valid
+  // A closed, 2-manifold, outward-oriented shell without self-intersection (its faces may be
+  // non-planar beyond the tolerance): volume and common_volume are meaningful.
+  bool closed_manifold = false;
+  double volume = 0;       // signed (negative = inward normals), m³
+  double area = 0;         // m²
+  double hull_volume = 0;  // of the convex hull, m³
+  double convexity = 0;    // volume / hull_volume
+  BBox box;
+  std::vector<Plane> hull_facets;  // outward unit normals
+  TriangleShell shell;
+  bool valid() const { return errors.empty(); }
+};
+
+SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol = {});
+
+// Volume (m³) common to two shells of solids with closed_manifold; 0 when they only touch. nullopt when the exact boolean operation cannot
+// build a closed result (then the caller must say so, not guess).
+std::optional<double> common_volume(const TriangleShell& a, const TriangleShell& b);
+
+}  // namespace mc
