@@ -178,7 +178,7 @@ class Converter {
         if (name == "name" || name == "description") add_attribute(attrs, std::string(name), trim(text(c)));
         continue;  // gml:boundedBy (envelope) and the rest: nothing to carry
       }
-      if (is_generics_ns(uri)) {
+      if (is_generics_ns(uri) || (is_citygml_ns(uri) && name == "genericAttribute")) {  // 1.0/2.0 | 3.0
         generic_attribute(c, attrs);
         continue;
       }

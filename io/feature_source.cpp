@@ -26,7 +26,7 @@ class CityJsonSource : public FeatureSource {
 bool ends_with_icase(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
   return std::equal(suffix.begin(), suffix.end(), s.end() - static_cast<std::ptrdiff_t>(suffix.size()),
-                    [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+                    [](char ext, char c) { return ext == std::tolower(static_cast<unsigned char>(c)); });
 }
 
 }  // namespace
