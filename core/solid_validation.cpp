@@ -462,7 +462,7 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol) {
   return out;
 }
 
-std::optional<double> common_volume(const TriangleShell& a, const TriangleShell& b) {
+std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell& b) {
   bool ok_a = false, ok_b = false;
   Mesh ma = to_mesh(a, ok_a), mb = to_mesh(b, ok_b), common;
   if (!ok_a || !ok_b) return std::nullopt;
@@ -471,8 +471,8 @@ std::optional<double> common_volume(const TriangleShell& a, const TriangleShell&
   } catch (const std::exception&) {
     return std::nullopt;
   }
-  if (common.is_empty()) return 0.0;
-  return std::abs(PMP::volume(common));
+  if (common.is_empty()) return Common{};
+  return Common{std::abs(PMP::volume(common)), PMP::area(common)};
 }
 
 }  // namespace mc

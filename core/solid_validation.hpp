@@ -59,8 +59,13 @@ struct SolidCheck {
 
 SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol = {});
 
-// Volume (m³) common to two shells of solids with closed_manifold; 0 when they only touch. nullopt when the exact boolean operation cannot
-// build a closed result (then the caller must say so, not guess).
-std::optional<double> common_volume(const TriangleShell& a, const TriangleShell& b);
+// What two solids with closed_manifold have in common: its volume (m³; 0 when they only touch)
+// and surface area (m²; 2 x volume / area is the mean thickness, which tells a sliver from a real
+// overlap). nullopt when the exact boolean operation cannot build a closed result (then the
+// caller must say so, not guess).
+struct Common {
+  double volume = 0, area = 0;
+};
+std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell& b);
 
 }  // namespace mc

@@ -220,14 +220,19 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
         if (!pa.check.closed_manifold || !pb.check.closed_manifold) continue;
         if (hulls_separated(pa.check, pb.check, opt.planarity)) continue;
         ++counts.overlap_tests;
-        const std::optional<double> common = common_volume(pa.check.shell, pb.check.shell);
+        const std::optional<Common> common = common_volume(pa.check.shell, pb.check.shell);
+        // Touching parts share faces whose vertices were rounded to the grid independently of
+        // how each part triangulates them: slivers up to the quantisation bound of the contact
+        // (at most the smaller surface) are touching, not overlap.
+        const double tol = opt.overlap + quantisation_bound(std::min(pa.check.area, pb.check.area), scale);
         if (!common) {
           add(building, vc::kOverlapNotComputed, "level " + num(t) + ": the common volume of " + pa.id + " and " + pb.id +
                                                      " could not be computed exactly");
-        } else if (*common > opt.overlap) {
-          const std::string what = " m³ in common (tolerance " + num(opt.overlap) + " m³)";
-          add(pa.report, vc::kPartsOverlap, "overlaps " + pb.id + ": " + num(*common) + what);
-          add(pb.report, vc::kPartsOverlap, "overlaps " + pa.id + ": " + num(*common) + what);
+        } else if (common->volume > tol) {
+          const std::string what = " m³ in common, " + num(2 * common->volume / common->area) + " m thick on average (tolerance " +
+                                   num(tol) + " m³)";
+          add(pa.report, vc::kPartsOverlap, "overlaps " + pb.id + ": " + num(common->volume) + what);
+          add(pb.report, vc::kPartsOverlap, "overlaps " + pa.id + ": " + num(common->volume) + what);
         }
       }
     // Volumes: only when every part of the level is a valid closed solid (else already reported).

@@ -182,10 +182,11 @@ TEST(SolidValidation, CommonVolumeTouchingOverlappingIdentical) {
   const SolidCheck half = check_solid(box({0.5, 0, 0}, {1.5, 1, 1}));
   const SolidCheck inside = check_solid(box({0.25, 0.25, 0.25}, {0.75, 0.75, 0.75}));
   ASSERT_TRUE(a.valid() && touching.valid() && half.valid() && inside.valid());
-  EXPECT_NEAR(common_volume(a.shell, touching.shell).value(), 0.0, 1e-12);
-  EXPECT_NEAR(common_volume(a.shell, half.shell).value(), 0.5, 1e-9);
-  EXPECT_NEAR(common_volume(a.shell, a.shell).value(), 1.0, 1e-9);
-  EXPECT_NEAR(common_volume(a.shell, inside.shell).value(), 0.125, 1e-9);
+  EXPECT_NEAR(common_volume(a.shell, touching.shell).value().volume, 0.0, 1e-12);
+  EXPECT_NEAR(common_volume(a.shell, half.shell).value().volume, 0.5, 1e-9);
+  EXPECT_NEAR(common_volume(a.shell, half.shell).value().area, 4.0, 1e-9);
+  EXPECT_NEAR(common_volume(a.shell, a.shell).value().volume, 1.0, 1e-9);
+  EXPECT_NEAR(common_volume(a.shell, inside.shell).value().volume, 0.125, 1e-9);
 }
 
 }  // namespace
