@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -138,7 +139,6 @@ bool GeometryReader::coordinates(const xmlNode* el, std::vector<double>& xyz) {
     }
     const char sep = cs.empty() ? ',' : cs[0];
     const std::string s = text(el);
-    size_t tuples = 0;
     for (size_t i = 0; i < s.size();) {
       while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
       if (i >= s.size()) break;
@@ -157,7 +157,6 @@ bool GeometryReader::coordinates(const xmlNode* el, std::vector<double>& xyz) {
         fail("broken gml:coordinates: a tuple of " + std::to_string(v.size() - before) + " values");
         return false;
       }
-      ++tuples;
       i = j;
     }
   }
