@@ -17,10 +17,14 @@ bool boxes_overlap(const BBox& a, const BBox& b, double grow) {
          b.lo.y <= a.hi.y + grow && a.lo.z <= b.hi.z + grow && b.lo.z <= a.hi.z + grow;
 }
 
+enum class Crossing { No, Hair, Yes };
+
 // Does plane q really cross cell c: a vertex beyond δ on both sides and the region nearby.
-bool crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta) {
+// `No` also holds for every sub-cell of c (the plane can be dropped for them); `Hair` only for
+// this cell (a vertex a hair from the plane, which a later split may remove: keep the plane).
+Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta) {
   const BBox cb = cx.cell_bbox(c);
-  if (!boxes_overlap(cb, q.bbox, 3 * delta)) return false;
+  if (!boxes_overlap(cb, q.bbox, 3 * delta)) return Crossing::No;
   const Plane& pl = cx.planes()[q.plane];
   // A plane passing within δ/10 of a vertex without going through it would create vertices a
   // hair apart (they collapse when the output is quantised): not offered to this cell.
@@ -32,7 +36,8 @@ bool crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delt
     neg |= s < -delta;
     near |= std::abs(s) > on && std::abs(s) < hair;
   }
-  return pos && neg && !near;
+  if (!(pos && neg)) return Crossing::No;
+  return near ? Crossing::Hair : Crossing::Yes;
 }
 
 uint64_t mix(uint64_t x) {
@@ -159,14 +164,20 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     const uint32_t c = queue.top().cell;
     queue.pop();
     std::vector<uint32_t> remaining = std::move(todo[c]);
-    // The largest remaining region plane that really crosses the cell.
+    // The largest remaining region plane that really crosses the cell. Planes passed over only
+    // because of a hair-close vertex stay for the sub-cells.
     size_t i = 0;
-    for (; i < remaining.size(); ++i)
-      if (crosses(cx, c, planes[remaining[i]], p.dist)) break;
+    std::vector<uint32_t> deferred;
+    for (; i < remaining.size(); ++i) {
+      const Crossing x = crosses(cx, c, planes[remaining[i]], p.dist);
+      if (x == Crossing::Yes) break;
+      if (x == Crossing::Hair) deferred.push_back(remaining[i]);
+    }
     if (i == remaining.size()) continue;
     const uint32_t plane_index = remaining[i];
     auto split = cx.split(c, planes[plane_index].plane);
     remaining.erase(remaining.begin(), remaining.begin() + static_cast<long>(i) + 1);
+    remaining.insert(remaining.begin(), deferred.begin(), deferred.end());
     if (!split) {  // cannot happen after `crosses`, but never loop on it
       enqueue(c, 1e300, remaining);
       continue;
@@ -175,7 +186,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     for (uint32_t child : {split->neg, split->pos}) {
       std::vector<uint32_t> kept;
       for (uint32_t q : remaining)
-        if (crosses(cx, child, planes[q], p.dist)) kept.push_back(q);
+        if (crosses(cx, child, planes[q], p.dist) != Crossing::No) kept.push_back(q);
       enqueue(child, vote(child), std::move(kept));
     }
   }
@@ -187,30 +198,54 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
 }
 
 size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume) {
-  size_t flips = 0;
-  for (int iter = 0; iter < 200; ++iter) {
-    std::sort(inside.begin(), inside.end());
-    const auto uses = boundary_edge_uses(cx, inside);  // edge -> (facet, inner cell)
-    const std::vector<std::pair<uint32_t, uint32_t>>* pinch = nullptr;
+  auto pinch_count = [&](const std::vector<uint32_t>& cells) {
+    const auto uses = boundary_edge_uses(cx, cells);  // edge -> (facet, inner cell)
+    size_t n = 0;
     for (const auto& [e, inc] : uses)
-      if (inc.size() > 2) {
-        pinch = &inc;
+      if (inc.size() > 2) ++n;
+    return std::make_pair(n, uses);
+  };
+  auto flip = [](std::vector<uint32_t>& cells, uint32_t c) {
+    auto it = std::lower_bound(cells.begin(), cells.end(), c);
+    if (it != cells.end() && *it == c) cells.erase(it); else cells.insert(it, c);
+  };
+  // Each cell changes side at most once, so the repair cannot oscillate (a flip that removes one
+  // pinch may create another next to it); among the cells around a pinch edge the smallest one
+  // whose flip lowers the number of pinch edges is taken, else the smallest.
+  std::unordered_set<uint32_t> flipped;
+  size_t flips = 0;
+  std::sort(inside.begin(), inside.end());
+  for (;;) {
+    auto [count, uses] = pinch_count(inside);
+    if (count == 0) return flips;
+    std::vector<uint32_t> around;
+    for (const auto& [e, inc] : uses) {
+      if (inc.size() <= 2) continue;
+      for (const auto& [f, c] : inc)
+        for (uint32_t x : {c, cx.other_side(f, c)})
+          if (x != CellComplex::kNone && !flipped.count(x)) around.push_back(x);
+      if (!around.empty()) break;  // the first pinch edge that can still be repaired
+    }
+    if (around.empty()) return flips;  // every cell around every pinch has flipped once: give up
+    std::sort(around.begin(), around.end(), [&](uint32_t a, uint32_t b) {
+      const double va = cx.cell_volume(a), vb = cx.cell_volume(b);
+      return va != vb ? va < vb : a < b;
+    });
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    uint32_t pick = around.front();
+    for (uint32_t c : around) {
+      std::vector<uint32_t> trial = inside;
+      flip(trial, c);
+      if (pinch_count(trial).first < count) {
+        pick = c;
         break;
       }
-    if (!pinch) return flips;
-    uint32_t best = CellComplex::kNone;
-    for (const auto& [f, c] : *pinch)
-      for (uint32_t x : {c, cx.other_side(f, c)})
-        if (x != CellComplex::kNone && (best == CellComplex::kNone || cx.cell_volume(x) < cx.cell_volume(best) ||
-                                        (cx.cell_volume(x) == cx.cell_volume(best) && x < best)))
-          best = x;
-    if (best == CellComplex::kNone) return flips;
-    auto it = std::lower_bound(inside.begin(), inside.end(), best);
-    if (it != inside.end() && *it == best) inside.erase(it); else inside.push_back(best);
-    flipped_volume += cx.cell_volume(best);
+    }
+    flip(inside, pick);
+    flipped.insert(pick);
+    flipped_volume += cx.cell_volume(pick);
     ++flips;
   }
-  return flips;
 }
 
 std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx, const std::vector<uint32_t>& cells) {

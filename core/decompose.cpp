@@ -53,7 +53,7 @@ AnalysisContext make_context(const Preprocessed& pre, const DecomposeParams& p, 
 // and precompute on which side of every candidate each refined cell lies (exact predicates).
 Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
   CellComplex& cx = *pre.complex;
-  PlaneRegistry& reg = pre.planes;
+  PlaneRegistry& reg = *pre.planes;
   Prepared pr;
   CellSpace coarse = make_space(cx, w.cells);
   const PlaneResolver add = [&](const Plane& g, const std::vector<uint32_t>& pool) -> std::optional<uint32_t> {
@@ -392,7 +392,7 @@ PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& c
   labels.semantic_labels = pre.labels;
   const int32_t closure = labels.label_index("ClosureSurface");
   PolygonMesh m = to_polygon_mesh(cx, s, Vec3{}, [&](const SurfaceFace& f) {
-    if (f.cut || pre.planes.origin(f.plane) != PlaneOrigin::Region) return closure;
+    if (f.cut || pre.planes->origin(f.plane) != PlaneOrigin::Region) return closure;
     return pre.label_of_plane(f.plane);
   });
   m.semantic_labels = std::move(labels.semantic_labels);

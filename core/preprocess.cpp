@@ -65,10 +65,10 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   BBox cbox = out.box;
   cbox.lo -= Vec3{pad, pad, pad};
   cbox.hi += Vec3{pad, pad, pad};
-  out.complex = std::make_unique<CellComplex>(out.planes, cbox);
+  out.complex = std::make_unique<CellComplex>(*out.planes, cbox);
   std::vector<CarvePlane> cps;
   for (const auto& r : regions) {
-    const uint32_t id = out.planes.add(r.plane, PlaneOrigin::Region);
+    const uint32_t id = out.planes->add(r.plane, PlaneOrigin::Region);
     if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
     if (out.plane_label[id] < 0) out.plane_label[id] = r.semantic;
     cps.push_back({id, r.bbox});
@@ -76,7 +76,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
   {
-    const uint32_t id = out.planes.add({{0, 0, 1}, -out.box.lo.z}, PlaneOrigin::Region);
+    const uint32_t id = out.planes->add({{0, 0, 1}, -out.box.lo.z}, PlaneOrigin::Region);
     if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
     if (out.plane_label[id] < 0) out.plane_label[id] = mesh.label_index("GroundSurface");
     out.labels = mesh.semantic_labels;

@@ -31,7 +31,9 @@ struct Preprocessed {
   double cell_size = 0, dist = 0;
   double angle_rad = 0;  // θa (plane classes, candidate snapping)
   BBox box;  // bounding box of the centred, z-up input (A_diag, snapping)
-  PlaneRegistry planes;
+  // Held by pointer: the complex refers to the registry, so both must keep their address when a
+  // Preprocessed is moved (e.g. assigned from preprocess()).
+  std::unique_ptr<PlaneRegistry> planes = std::make_unique<PlaneRegistry>();
   std::unique_ptr<CellComplex> complex;
   std::vector<SingletonComponent> components;  // largest first
   std::vector<int32_t> plane_label;            // per plane id: semantic label index or -1
