@@ -96,6 +96,7 @@ void validate(const Params& params, const RunConfig& run) {
   validate_pre(params.pre);
   validate_dec(params.dec);
   at_least("timeout_s", params.timeout_s, 0, " (0 disables the deadline)");
+  at_least("max_faces", static_cast<double>(params.max_faces), 0, " (0 = no limit)");
   at_least("threads", params.threads, 0, " (0 = all cores)");
   at_least("in_flight", run.in_flight, 0, " (0 = automatic)");
 

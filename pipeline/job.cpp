@@ -105,6 +105,8 @@ void set_status_attributes(BuildingOutcome& out) {
     a["morphcut_levels"] = levels;
   }
   if (std::isfinite(out.hausdorff)) a["morphcut_hausdorff"] = rounded(out.hausdorff, 1e-6);
+  // What every level's parts must add up to (checked by `morphcut-city validate`).
+  if (!out.levels.empty() && out.measures.volume) a["morphcut_cell_volume"] = rounded(*out.measures.volume, 1e-6);
 }
 
 // One level's parts encoded and checked, not yet in the feature.
@@ -180,11 +182,19 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
                             ? start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(p.timeout_s))
                             : Clock::time_point::max();
   auto t = Clock::now();
-  Preprocessed pre = preprocess(in.mesh, p.pre, deadline);
+  Preprocessed pre;
+  try {
+    pre = preprocess(in.mesh, p.pre, deadline);
+  } catch (const std::exception& e) {
+    // Carving cut short by the deadline finds no inside cell: the deadline is the reason.
+    if (Clock::now() >= deadline)
+      throw std::runtime_error(deadline_reason(p, "during preprocessing") + " (" + e.what() + ")");
+    throw;
+  }
   out.time.preprocess = since(t);
   out.size.input_faces = pre.input_faces;
   out.size.regions = pre.regions;
-  out.size.planes = pre.planes.size();
+  out.size.planes = pre.planes->size();
   out.size.cells = pre.cells;
   out.size.inside_cells = pre.inside_cells;
   out.size.components = pre.components.size();
@@ -355,10 +365,22 @@ size_t strip_previous_parts(mc::io::Feature& f) {
     *ch = std::move(kept);
   }
   if (auto a = b->find("attributes"); a != b->end() && a->is_object())
-    for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff"})
+    for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff",
+                          "morphcut_cell_volume"})
       a->erase(k);
   if (removed) compact_vertices(f);
   return removed;
+}
+
+BuildingOutcome failed_building(mc::io::Feature&& f, const std::string& reason) {
+  BuildingOutcome out;
+  out.id = f.id;
+  out.is_building = mc::io::is_building(f);
+  out.feature = std::move(f);
+  out.status = "failed";
+  out.reason = reason;
+  if (out.is_building) set_status_attributes(out);
+  return out;
 }
 
 BuildingOutcome run_building(const mc::io::Feature& f, const mc::io::Header& h, const Params& p,
@@ -390,6 +412,10 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
                        : "no surface geometry at LoD " + rc.lod + " (available: " +
                              lods_text(mc::io::building_lods(out.feature, h)) + ")";
       if (!in.problems.empty()) out.reason += "; " + in.problems.front();
+    } else if (p.max_faces > 0 && in.mesh.faces.size() > static_cast<size_t>(p.max_faces)) {
+      out.status = "skipped";
+      out.reason = "too large: " + std::to_string(in.mesh.faces.size()) + " faces > max_faces (" +
+                   std::to_string(p.max_faces) + ")";
     } else {
       out.measures.height = height(in.mesh);
       const Footprint fp = footprint(in.mesh);

@@ -21,6 +21,10 @@ BuildingOutcome run_building(const mc::io::Feature& f, const mc::io::Header& h, 
 // Same, taking the feature by value (the pipeline moves it through, no copy).
 BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const Params& p, const RunConfig& rc);
 
+// The input kept untouched with status "failed" and `reason`: for a job that threw outside
+// run_building's own guard (the run's per-feature hook), so that the building is still written.
+BuildingOutcome failed_building(mc::io::Feature&& f, const std::string& reason);
+
 // Removes BuildingParts and attributes a previous morphcut run added, so that running on an
 // output is the same as running on its input (parts are recognised by `morphcut_level`).
 // Returns the number of objects removed.
