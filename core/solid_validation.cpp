@@ -7,6 +7,10 @@
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -462,17 +466,68 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol) {
   return out;
 }
 
+namespace {
+
+// Adds the faces of `m` that bound the common part: those inside `other`, and (when
+// `take_shared`) those lying on `other`'s surface with both solids behind them.
+void add_common_faces(const Mesh& m, const Mesh& other, bool take_shared, const Vec3& o, double& six_v, double& area) {
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  const Tree tree(faces(other).first, faces(other).second, other);
+  const CGAL::Side_of_triangle_mesh<Mesh, K> side(other);
+  constexpr double kOn = 1e-6;  // m: on the other surface (corefined, so exactly up to rounding)
+  for (auto f : m.faces()) {
+    std::array<Vec3, 3> p;
+    int i = 0;
+    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+      const auto& q = m.point(v);
+      if (i < 3) p[i] = {q.x(), q.y(), q.z()};
+      ++i;
+    }
+    const Vec3 c = (p[0] + p[1] + p[2]) / 3.0, n = cross(p[1] - p[0], p[2] - p[0]);
+    if (norm(n) == 0) continue;
+    const double d = std::sqrt(tree.squared_distance(K::Point_3(c.x, c.y, c.z)));
+    if (d < kOn) {
+      if (!take_shared) continue;
+      const Vec3 probe = c - normalized(n) * (10 * kOn);  // just behind the face, inside m
+      if (side(K::Point_3(probe.x, probe.y, probe.z)) != CGAL::ON_BOUNDED_SIDE) continue;
+    } else if (side(K::Point_3(c.x, c.y, c.z)) != CGAL::ON_BOUNDED_SIDE) {
+      continue;
+    }
+    six_v += dot(p[0] - o, cross(p[1] - o, p[2] - o));
+    area += norm(n) / 2;
+  }
+}
+
+}  // namespace
+
+std::optional<Common> common_volume_by_faces(const TriangleShell& a, const TriangleShell& b) {
+  bool ok_a = false, ok_b = false;
+  Mesh ma = to_mesh(a, ok_a), mb = to_mesh(b, ok_b);
+  if (!ok_a || !ok_b) return std::nullopt;
+  try {
+    PMP::corefine(ma, mb);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  const Vec3 o = a.points.empty() ? Vec3{} : a.points[0];
+  double six_v = 0, area = 0;
+  add_common_faces(ma, mb, true, o, six_v, area);
+  add_common_faces(mb, ma, false, o, six_v, area);
+  return Common{std::abs(six_v) / 6, area};
+}
+
 std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell& b) {
   bool ok_a = false, ok_b = false;
   Mesh ma = to_mesh(a, ok_a), mb = to_mesh(b, ok_b), common;
   if (!ok_a || !ok_b) return std::nullopt;
   try {
-    if (!PMP::corefine_and_compute_intersection(ma, mb, common)) return std::nullopt;
+    // false when the common part is not a 2-manifold (e.g. two pieces meeting at an edge).
+    if (PMP::corefine_and_compute_intersection(ma, mb, common))
+      return common.is_empty() ? Common{} : Common{std::abs(PMP::volume(common)), PMP::area(common)};
   } catch (const std::exception&) {
-    return std::nullopt;
   }
-  if (common.is_empty()) return Common{};
-  return Common{std::abs(PMP::volume(common)), PMP::area(common)};
+  return common_volume_by_faces(a, b);
 }
 
 }  // namespace mc

@@ -67,5 +67,8 @@ struct Common {
   double volume = 0, area = 0;
 };
 std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell& b);
+// The fallback common_volume uses when the boolean's result is not a 2-manifold: both shells
+// corefined, the faces bounding the common part picked and integrated (divergence theorem).
+std::optional<Common> common_volume_by_faces(const TriangleShell& a, const TriangleShell& b);
 
 }  // namespace mc

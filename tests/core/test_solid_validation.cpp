@@ -187,6 +187,15 @@ TEST(SolidValidation, CommonVolumeTouchingOverlappingIdentical) {
   EXPECT_NEAR(common_volume(a.shell, half.shell).value().area, 4.0, 1e-9);
   EXPECT_NEAR(common_volume(a.shell, a.shell).value().volume, 1.0, 1e-9);
   EXPECT_NEAR(common_volume(a.shell, inside.shell).value().volume, 0.125, 1e-9);
+  // The fallback agrees, shared faces included.
+  EXPECT_NEAR(common_volume_by_faces(a.shell, touching.shell).value().volume, 0.0, 1e-12);
+  EXPECT_NEAR(common_volume_by_faces(a.shell, half.shell).value().volume, 0.5, 1e-9);
+  EXPECT_NEAR(common_volume_by_faces(a.shell, half.shell).value().area, 4.0, 1e-9);
+  EXPECT_NEAR(common_volume_by_faces(a.shell, a.shell).value().volume, 1.0, 1e-9);
+  EXPECT_NEAR(common_volume_by_faces(a.shell, inside.shell).value().volume, 0.125, 1e-9);
+  EXPECT_NEAR(common_volume_by_faces(inside.shell, a.shell).value().volume, 0.125, 1e-9);
+  // A shell that is not a 2-manifold cannot be corefined: no number rather than a guess.
+  EXPECT_FALSE(common_volume(a.shell, check_solid(merged(box({0, 0, 0}, {1, 1, 1}), box({1, 1, 0}, {2, 2, 1}))).shell));
 }
 
 }  // namespace
