@@ -43,29 +43,29 @@ json.dump(doc, open(sys.argv[2], "w"), separators=(",", ":"))
 print(f"changed {len(changed)} of {len(tops)} buildings", file=sys.stderr)
 EOF
 
-run() {  # name input -> wall seconds on stdout
-  local name="$1" in="$2" t0 t1
-  t0=$(date +%s.%N)
-  "$bin" "$in" --cache "$work/cache" --threads "$threads" -q -o "$work/$name.city.json" \
-    --report "$work/$name.report.json" --summary "$work/$name.csv" || [ $? -eq 1 ]
-  t1=$(date +%s.%N)
-  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }'
+run() {  # name input -> "wall cpu" seconds on stdout (cpu = user + system, robust to a busy machine)
+  local name="$1" in="$2" t
+  t="$( { TIMEFORMAT='%R %U %S'; time "$bin" "$in" --cache "$work/cache" --threads "$threads" -q \
+    -o "$work/$name.city.json" --report "$work/$name.report.json" --summary "$work/$name.csv" \
+    || [ $? -eq 1 ]; } 2>&1 >/dev/null | tail -n 1)"
+  awk '{ printf "%.2f %.2f\n", $1, $2 + $3 }' <<<"$t"
 }
 cache_counts() {
   python3 -c 'import json,sys; c=json.load(open(sys.argv[1]))["cache"]; print(c["hits"], "hits /", c["misses"], "misses")' "$1"
 }
 
-cold=$(run cold "$input")
-warm=$(run warm "$input")
-changed=$(run changed "$work/changed.city.json")
+read -r cold cold_cpu < <(run cold "$input")
+read -r warm warm_cpu < <(run warm "$input")
+read -r changed changed_cpu < <(run changed "$work/changed.city.json")
 
 cmp -s "$work/cold.city.json" "$work/warm.city.json" || { echo "bench_cache: warm output differs from cold" >&2; exit 1; }
 cmp -s "$work/cold.csv" "$work/warm.csv" || { echo "bench_cache: warm CSV differs from cold" >&2; exit 1; }
 
-printf '%-22s %9s  %s\n' run "wall (s)" "cache"
-printf '%-22s %9.2f  %s\n' "cold (empty cache)" "$cold" "$(cache_counts "$work/cold.report.json")"
-printf '%-22s %9.2f  %s\n' "warm (unchanged)" "$warm" "$(cache_counts "$work/warm.report.json")"
-printf '%-22s %9.2f  %s\n' "5% buildings changed" "$changed" "$(cache_counts "$work/changed.report.json")"
-printf 'speed-up warm: %.1fx   speed-up 5%% changed: %.1fx   (threads %s; warm output byte-identical to cold)\n' \
-  "$(awk -v a="$cold" -v b="$warm" 'BEGIN { print a / b }')" \
-  "$(awk -v a="$cold" -v b="$changed" 'BEGIN { print a / b }')" "$threads"
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1fx", a / b }'; }
+printf '%-22s %9s %9s  %s\n' run "wall (s)" "CPU (s)" "cache"
+printf '%-22s %9.2f %9.2f  %s\n' "cold (empty cache)" "$cold" "$cold_cpu" "$(cache_counts "$work/cold.report.json")"
+printf '%-22s %9.2f %9.2f  %s\n' "warm (unchanged)" "$warm" "$warm_cpu" "$(cache_counts "$work/warm.report.json")"
+printf '%-22s %9.2f %9.2f  %s\n' "5% buildings changed" "$changed" "$changed_cpu" "$(cache_counts "$work/changed.report.json")"
+echo "speed-up warm: $(ratio "$cold" "$warm") wall, $(ratio "$cold_cpu" "$warm_cpu") CPU;" \
+  "5% changed: $(ratio "$cold" "$changed") wall, $(ratio "$cold_cpu" "$changed_cpu") CPU" \
+  "(threads $threads; load average $(cut -d' ' -f1 /proc/loadavg); warm output byte-identical to cold)"

@@ -54,7 +54,7 @@ dd if=/dev/urandom of="$tmp/munge/munge.key" bs=1024 count=1 status=none
 chmod 400 "$tmp/munge/munge.key"
 socket="$tmp/munge/munge.socket"
 munged -F --force --key-file="$tmp/munge/munge.key" --socket="$socket" --pid-file="$tmp/munge/munged.pid" \
-  --log-file="$tmp/log/munged.log" --seed-file="$tmp/munge/munged.seed" &
+  --log-file="$tmp/log/munged.log" --seed-file="$tmp/munge/munged.seed" >"$tmp/log/munged.out" 2>&1 &
 pids+=($!)
 for _ in $(seq 50); do [ -S "$socket" ] && break; sleep 0.1; done
 [ -S "$socket" ] || fail "munged did not start"
@@ -125,7 +125,7 @@ wait_jobs() {
     [ "$SECONDS" -lt "$deadline" ] || fail "jobs $array/$merge still queued after 300 s: $(squeue -h)"
     sleep 0.5
   done
-  scontrol show job "$merge" | sed -n 's/.*JobState=\([A-Z]*\).* ExitCode=\([0-9]*\):.*/\1 \2/p' | head -n 1
+  scontrol -o show job "$merge" | sed -n 's/.*JobState=\([A-Z]*\).* ExitCode=\([0-9]*\):.*/\1 \2/p' | head -n 1
 }
 task_states() { scontrol -o show job "$1" | sed -n 's/.*ArrayTaskId=\([0-9]*\) .*JobState=\([A-Z]*\).* ExitCode=\([0-9]*\):.*/\1:\2:\3/p' | sort; }
 

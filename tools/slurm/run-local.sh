@@ -28,6 +28,10 @@ if [ -z "$bin" ] || [ ! -x "$bin" ]; then echo "run-local: morphcut-city not fou
 MORPHCUT_CITY="$(realpath "$bin")"
 export MORPHCUT_CITY
 
+# Outputs are named after the tile's stem: two tiles with one stem would overwrite each other.
+dups="$(grep -v -E '^[[:space:]]*(#|$)' "$list" | sed -E -e 's/[[:space:]]*$//' -e 's|.*/||' \
+  -e 's/\.(city\.jsonl|city\.json|jsonl|json)$//' | sort | uniq -d)"
+if [ -n "$dups" ]; then echo "run-local: tiles with the same stem in $list: $dups" >&2; exit 2; fi
 worst=0
 while IFS= read -r tile; do
   code=0

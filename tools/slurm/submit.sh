@@ -36,6 +36,10 @@ if [ -z "$bin" ] || [ ! -x "$bin" ]; then echo "submit: morphcut-city not found 
 bin="$(realpath "$bin")"
 n="$(grep -c -v -E '^[[:space:]]*(#|$)' "$list" || true)"
 [ "$n" -gt 0 ] || { echo "submit: no tiles in $list" >&2; exit 2; }
+# Outputs are named after the tile's stem: two tiles with one stem would overwrite each other.
+dups="$(grep -v -E '^[[:space:]]*(#|$)' "$list" | sed -E -e 's/[[:space:]]*$//' -e 's|.*/||' \
+  -e 's/\.(city\.jsonl|city\.json|jsonl|json)$//' | sort | uniq -d)"
+if [ -n "$dups" ]; then echo "submit: tiles with the same stem in $list: $dups" >&2; exit 2; fi
 mkdir -p "$outdir/logs"
 outdir="$(realpath "$outdir")"
 
