@@ -131,7 +131,9 @@ struct CityGmlReader::Impl {
         } else if (is_gml_ns(uri) && name == "name") {
           if (title.empty()) title = trim(text(expand()));
           next_move = Move::Skip;
-        } else if (!((is_citygml_ns(uri) && name == "cityObjectMember") || (is_gml_ns(uri) && name == "featureMember"))) {
+        } else if (is_gml_ns(uri) && name != "featureMember") {
+          next_move = Move::Skip;  // gml:description and other metadata of the model
+        } else if (!(is_citygml_ns(uri) && name == "cityObjectMember") && !is_gml_ns(uri)) {
           ++skipped_top[std::string(name)];  // appearanceMember (global appearances), ...
           next_move = Move::Skip;
         }
