@@ -4,7 +4,9 @@ JOBS ?= $(shell nproc)
 DEMO_INPUT ?= datasets/3dbag/3dbag_5910.city.json
 DEMO_OUT ?= $(BUILD)/demo
 
-.PHONY: all deps configure build test demo bench clean test-sanitize
+FUZZ_SECONDS ?= 20
+
+.PHONY: all deps configure build test demo bench clean test-sanitize fuzz
 
 all: build
 
@@ -38,6 +40,10 @@ test-sanitize: deps
 	@cmake -S . -B $(BUILD)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMC_SANITIZE=ON -DMC_BUILD_BENCH=OFF >/dev/null
 	@cmake --build $(BUILD)-asan -j $(JOBS)
 	@cd $(BUILD)-asan && ctest --output-on-failure -j $(JOBS)
+
+# libFuzzer targets (clang, own build dir): each fuzzed FUZZ_SECONDS; see tools/fuzz.sh.
+fuzz: deps
+	@bash tools/fuzz.sh --build $(BUILD)-fuzz --seconds $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD)

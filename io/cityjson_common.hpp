@@ -34,6 +34,13 @@ std::string parse_crs(const nlohmann::json& root);
 // their shortest JSON form (2 -> "2", 2.2 -> "2.2"); empty when missing.
 std::string lod_string(const nlohmann::json& lod);
 
+// JSON nesting limit. CityJSON needs about ten levels; deeper input is hostile or broken, and
+// nlohmann's serializer and copies recurse once per level (a 100k-deep array overflows the stack).
+inline constexpr int kMaxJsonDepth = 512;
+// True when `text` (one JSON value) has arrays/objects nested deeper than `limit`; a linear scan
+// that skips strings, cheap enough to run before every parse.
+bool nested_deeper_than(const std::string& text, int limit = kMaxJsonDepth);
+
 // Calls f(leaf, object_id, where) for every vertex reference of the objects: the leaves of every
 // geometry's "boundaries" and of every address "location". `where` is e.g. "geometry #0".
 // Leaves are passed as they are, so f sees (and may fix) non-integer values; arrays nested

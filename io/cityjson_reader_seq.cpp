@@ -35,6 +35,9 @@ class SequenceReader : public CityJsonReader::Impl {
     std::string line;
     if (!next_line(line)) throw ReadError(source_ + ": empty file (a CityJSONSeq starts with a CityJSON header line)");
     json root;
+    if (nested_deeper_than(line))
+      throw ReadError(source_ + ": line " + std::to_string(line_no_) + ": JSON nested deeper than " +
+                      std::to_string(kMaxJsonDepth) + " levels");
     try {
       root = json::parse(line);
     } catch (const json::exception& e) {
@@ -82,6 +85,7 @@ class SequenceReader : public CityJsonReader::Impl {
 
   bool read_feature(const std::string& line, Feature& out) {
     json doc;
+    if (nested_deeper_than(line)) return skip("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     try {
       doc = json::parse(line);
     } catch (const json::exception& e) {

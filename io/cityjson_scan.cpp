@@ -168,6 +168,9 @@ class Scanner {
   }
 
   bool open(bool is_object) {
+    if (depth_ >= kMaxJsonDepth)
+      return stop("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels at byte " +
+                  std::to_string(buf_.position()));
     if (dom_.active()) {
       dom_.open(is_object ? json::object() : json::array());
       ++depth_;

@@ -48,7 +48,7 @@ Building status (attribute morphcut_status, with morphcut_reason when not ok):
   partial  the deadline was reached (the best result so far is written), or a level's parts
            were not valid solids (a valid coarser or finer level is written in its place)
   failed   an error: the building is written through unchanged
-  skipped  no surface geometry at the requested LoD
+  skipped  no surface geometry at the requested LoD, or more faces than max_faces (too large)
 Running on a morphcut output replaces the parts of the earlier run.
 
 Exit codes:

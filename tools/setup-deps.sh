@@ -10,6 +10,7 @@ PKGS=(
   nlohmann-json3-dev libyaml-cpp-dev libxml2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev
+  clang libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and clang's sanitizers
 )
 
 missing=()

@@ -40,7 +40,27 @@ INSTANTIATE_TEST_SUITE_P(
         FatalCase{"cityobjects_array.city.json", "\"CityObjects\" must be an object, got an array"},
         FatalCase{"root_array.city.json", "the top-level JSON value is not an object"},
         FatalCase{"zero_scale.city.json", "invalid \"transform\": scale must be finite and non-zero"},
-        FatalCase{"empty.city.jsonl", "empty file (a CityJSONSeq starts with a CityJSON header line)"}),
+        FatalCase{"empty.city.jsonl", "empty file (a CityJSONSeq starts with a CityJSON header line)"},
+        // Wrong types of the members every reader needs.
+        FatalCase{"vertices_object.city.json", "\"vertices\" must be an array, got an object"},
+        FatalCase{"version_number.city.json",
+                  "\"version\" must be a string, got 2.0 (supported CityJSON versions: 1.0, 1.1, 2.0)"},
+        FatalCase{"transform_string.city.json", "invalid \"transform\": not an object"},
+        // Not JSON at all: NaN literals, invalid UTF-8, binary garbage and truncation of a sequence.
+        FatalCase{"nan_literal.city.json",
+                  "malformed JSON at byte 116: parse error at line 1, column 116: syntax error while parsing value - "
+                  "invalid literal; last read: '\"vertices\":[[N'"},
+        FatalCase{"invalid_utf8.city.json",
+                  "malformed JSON at byte 104: parse error at line 1, column 104: syntax error while parsing object "
+                  "key - invalid string: ill-formed UTF-8 byte; last read: '\"b\xc3('; expected string literal"},
+        FatalCase{"garbage.city.jsonl",
+                  "line 1: not a CityJSONSeq header (a CityJSONSeq starts with one CityJSON object on one line): "
+                  "parse error at line 1, column 1: syntax error while parsing value - unexpected end of input; "
+                  "expected '[', '{', or a literal"},
+        FatalCase{"truncated.city.jsonl",
+                  "line 1: not a CityJSONSeq header (a CityJSONSeq starts with one CityJSON object on one line): "
+                  "parse error at line 1, column 72: syntax error while parsing object key - invalid string: "
+                  "missing closing quote; last read: '\"transl'; expected string literal"}),
     [](const auto& info) {
       std::string n = info.param.file;
       for (char& ch : n)
@@ -129,6 +149,53 @@ TEST(BadInput, BadSequenceLinesAreSkipped) {
   EXPECT_EQ(w.features[2].id, "last");
   EXPECT_EQ(w.features[1].problems, (std::vector<std::string>{"oob: geometry #0: vertex index 7 out of range (3 vertices)"}));
   EXPECT_EQ(extract_building(w.features[2], w.header).mesh.faces.size(), 1u);
+}
+
+// Feature lines with missing or mistyped members: each feature keeps a precise problem, lines that
+// are not objects are skipped, and the good feature after them is read.
+TEST(BadInput, BadFeatureMembersAreReportedPerFeature) {
+  const std::string path = bad_input("bad_features.city.jsonl");
+  const auto w = read_all(path);
+  EXPECT_EQ(w.problems, (std::vector<std::string>{path + ": line 6: not a JSON object; line skipped"}));
+  std::vector<std::string> ids;
+  for (const auto& f : w.features) ids.push_back(f.id);
+  EXPECT_EQ(ids, (std::vector<std::string>{"novertices", "vertices_wrong_type", "noid", "other", "good"}));
+  EXPECT_EQ(w.features[0].problems,
+            (std::vector<std::string>{"novertices: feature line 2 has no \"vertices\" array; its geometry cannot be read"}));
+  EXPECT_EQ(w.features[1].problems,
+            (std::vector<std::string>{
+                "vertices_wrong_type: feature line 3 has no \"vertices\" array; its geometry cannot be read"}));
+  EXPECT_EQ(w.features[2].problems,
+            (std::vector<std::string>{"noid: feature line 4 has no valid \"id\"; using this top-level object"}));
+  EXPECT_EQ(w.features[3].problems,
+            (std::vector<std::string>{"other: feature line 5 has no valid \"id\"; using this top-level object"}));
+  EXPECT_TRUE(w.features[4].problems.empty());
+  EXPECT_EQ(extract_building(w.features[4], w.header).mesh.faces.size(), 1u);
+  EXPECT_TRUE(extract_building(w.features[0], w.header).mesh.empty());
+}
+
+// 100 000 nested arrays (generated, not committed): once a stack overflow in the serializer that
+// reports a bad vertex reference. A .city.json is refused as a whole (the scan stops at the
+// limit); in a sequence only the line is skipped.
+TEST(BadInput, DeepNestingIsRefusedWithoutRecursion) {
+  ScratchDir dir;
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const std::string doc = dir.file("deep.city.json");
+  std::ofstream(doc) << R"({"type":"CityJSON","version":"2.0","transform":{"scale":[1,1,1],"translate":[0,0,0]},)"
+                     << R"("CityObjects":{"deep":{"type":"Building","geometry":[{"type":"MultiSolid","lod":"2",)"
+                     << R"("boundaries":)" << deep << R"(}]}},"vertices":[[0,0,0]]})";
+  EXPECT_EQ(open_error(doc), doc + ": JSON nested deeper than 512 levels at byte 690");
+  const std::string seq = dir.file("deep.city.jsonl");
+  std::ofstream(seq) << R"({"type":"CityJSON","version":"2.0","transform":{"scale":[1,1,1],"translate":[0,0,0]},)"
+                     << R"("CityObjects":{},"vertices":[]})" << "\n"
+                     << R"({"type":"CityJSONFeature","id":"deep","CityObjects":{"deep":{"type":"Building",)"
+                     << R"("attributes":{"a":)" << deep << R"(}}},"vertices":[]})" << "\n"
+                     << R"({"type":"CityJSONFeature","id":"ok","CityObjects":{"ok":{"type":"Building"}},"vertices":[]})"
+                     << "\n";
+  const auto w = read_all(seq);
+  EXPECT_EQ(w.problems, (std::vector<std::string>{seq + ": line 2: JSON nested deeper than 512 levels; line skipped"}));
+  ASSERT_EQ(w.features.size(), 1u);
+  EXPECT_EQ(w.features[0].id, "ok");
 }
 
 // Random corruptions of a real file: never a crash, only ReadError or problems.

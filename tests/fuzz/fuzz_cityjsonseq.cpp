@@ -1,0 +1,7 @@
+// libFuzzer target: the CityJSONSeq (.city.jsonl) reader, building extraction, writer.
+#include "fuzz_util.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  mc::fuzz::read_extract_write(mc::fuzz::write_input(data, size, ".city.jsonl"), ".city.jsonl");
+  return 0;
+}
