@@ -1,4 +1,4 @@
-// morphcut-city on CityGML input: every building of the five shared CityGML samples (1.0, 2.0;
+// morphcut-city on CityGML input: every building of the five CityGML samples (1.0, 2.0;
 // Solid, CompositeSolid, boundary surfaces only, BuildingParts) is in the CityJSON 2.0 output with
 // a status, its BuildingParts are kept, the report names the format, and the output is valid.
 #include <iostream>
@@ -32,9 +32,12 @@ std::string ajv_path() {
 }
 std::string schema_dir() { return std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/schemas/2.0"; }
 
+// The project's copy (datasets/citygml) when there is one, else the shared file.
 std::string citygml(const std::string& name) {
-  const std::string shared = std::string(MC_SOURCE_DIR) + "/../shared/datasets/citygml/" + name;
-  return fs::exists(shared) ? shared : std::string();
+  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/datasets/citygml/",
+                                 std::string(MC_SOURCE_DIR) + "/../shared/datasets/citygml/"})
+    if (fs::exists(base + name)) return base + name;
+  return {};
 }
 
 TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
@@ -42,7 +45,9 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
   const std::vector<std::pair<std::string, std::string>> files = {
       {"DenHaag_1BwBP.citygml1.0.gml", "CityGML 1.0"},
       {"berlin_open_data_sample_data.citygml1.0.gml", "CityGML 1.0"},
-      {"LOD2_Buildings_v200.gml", "CityGML 2.0"},
+      // 10 of its 100 synthetic houses: the reader test converts all 100; decomposing them all
+      // would add 7 s for nothing new (README has the full run).
+      {"LOD2_Buildings_v200_first10.gml", "CityGML 2.0"},
       {"b1_lod2_s.gml", "CityGML 2.0"},
       {"b1_lod2_cs_w_sem.gml", "CityGML 2.0"},
   };
@@ -51,7 +56,7 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
   std::vector<std::string> outputs;
   for (const auto& [name, format] : files) {
     const std::string input = citygml(name);
-    if (input.empty()) GTEST_SKIP() << "../shared/datasets/citygml/" << name << " not found";
+    if (input.empty()) GTEST_SKIP() << "CityGML sample " << name << " not found";
     SCOPED_TRACE(name);
     const auto expected = input_buildings(input);
     ASSERT_FALSE(expected.empty());
@@ -115,7 +120,7 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
   const double share = total ? static_cast<double>(ok) / static_cast<double>(total) : 0.0;
   std::cout << "CityGML samples: " << ok << " of " << total << " buildings ok (" << 100.0 * share << " %)\n";
   RecordProperty("ok_share", std::to_string(share));
-  EXPECT_EQ(total, 1u + 61u + 100u + 1u + 1u);
+  EXPECT_EQ(total, 1u + 61u + 10u + 1u + 1u);
   // Measured 2026-11-21: see README "CityGML input". A drop below 90 % means the conversion lost geometry.
   EXPECT_GE(share, 0.9);
 
