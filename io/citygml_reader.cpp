@@ -5,6 +5,7 @@
 
 #include <libxml/xmlreader.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>

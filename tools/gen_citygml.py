@@ -4,7 +4,9 @@
 The buildings of a template CityGML file (default: datasets/citygml/LOD2_Buildings_v200_first10.gml,
 CityGML 2.0) are repeated on a grid: copy k is shifted by `--spacing` metres in x/y and every
 gml:id / xlink:href gets the suffix "_k", so ids stay unique and xlinks stay inside their copy.
-The file is streamed out; memory does not depend on N.
+The template's envelope is kept as it is (its lower corner still bounds every copy, which is
+what the reader's CityJSON transform is anchored at). The file is streamed out; memory does not
+depend on N.
 
     python3 tools/gen_citygml.py 50000 /tmp/city_50k.gml
 """

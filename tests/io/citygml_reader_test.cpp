@@ -352,6 +352,35 @@ TEST_F(CityGmlSynthetic, TwoDimensionalAndBrokenCoordinatesLeaveTheBuildingWitho
   EXPECT_EQ(r.features[4].vertices.size(), 8u);
 }
 
+TEST_F(CityGmlSynthetic, OpeningsAreSemanticSurfacesAndLod4BecomesLod3) {
+  auto ms = [](const std::string& lod, const std::string& coords) {
+    return "<b:lod" + lod + "MultiSurface><g:MultiSurface><g:surfaceMember><g:Polygon><g:exterior><g:LinearRing><g:posList>" +
+           coords + "</g:posList></g:LinearRing></g:exterior></g:Polygon></g:surfaceMember></g:MultiSurface></b:lod" + lod +
+           "MultiSurface>";
+  };
+  const std::string wall = "0 0 0 4 0 0 4 0 3 0 0 3 0 0 0", window = "1 0 1 2 0 1 2 0 2 1 0 2 1 0 1";
+  const std::string xml = std::string(kHead2) + R"(<core:cityObjectMember><b:Building g:id="L3">
+<b:boundedBy><b:WallSurface>)" + ms("3", wall) + R"(<b:opening><b:Window>)" + ms("3", window) +
+                          R"(</b:Window></b:opening></b:WallSurface></b:boundedBy>)" + ms("4", wall) +
+                          R"(</b:Building></core:cityObjectMember>
+<core:cityObjectMember><b:Building g:id="L4"><b:lod4Solid><g:Solid><g:exterior><g:CompositeSurface>)" +
+                          cube_polys() + R"(</g:CompositeSurface></g:exterior></g:Solid></b:lod4Solid></b:Building>
+</core:cityObjectMember></core:CityModel>)";
+  const auto r = read_gml(write("lod3.gml", xml));
+  ASSERT_EQ(r.features.size(), 2u);
+  const Feature& a = r.features[0];
+  ASSERT_EQ(a.objects["L3"]["geometry"].size(), 1u);  // lod4 dropped: lod3 exists
+  const json& g = a.objects["L3"]["geometry"][0];
+  EXPECT_EQ(g["lod"], "3");
+  EXPECT_EQ(g["semantics"]["surfaces"], json::parse(R"([{"type":"WallSurface"},{"type":"Window"}])"));
+  EXPECT_EQ(g["semantics"]["values"], json::parse("[0,1]"));
+  ASSERT_EQ(a.problems.size(), 1u);
+  EXPECT_NE(a.problems[0].find("lod4 geometry not carried"), std::string::npos);
+  const Feature& b = r.features[1];
+  EXPECT_EQ(b.objects["L4"]["geometry"][0]["lod"], "3");  // CityJSON stops at LoD 3
+  EXPECT_EQ(b.objects["L4"]["geometry"][0]["type"], "Solid");
+}
+
 TEST_F(CityGmlSynthetic, UnresolvedXlinkIsNotedAndTheRestKept) {
   const std::string xml = std::string(kHead2) + R"(<core:cityObjectMember><b:Building g:id="X">
 <b:lod2MultiSurface><g:MultiSurface>)" + cube_polys() +
