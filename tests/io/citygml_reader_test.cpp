@@ -381,6 +381,31 @@ TEST_F(CityGmlSynthetic, OpeningsAreSemanticSurfacesAndLod4BecomesLod3) {
   EXPECT_EQ(b.objects["L4"]["geometry"][0]["type"], "Solid");
 }
 
+TEST_F(CityGmlSynthetic, CrsFromTheFirstBuildingWithoutEnvelopeAndDisagreementsReported) {
+  auto building = [](const std::string& id, const std::string& srs, double z0) {
+    return "<core:cityObjectMember><b:Building g:id=\"" + id + "\"><b:lod2Solid><g:Solid srsName=\"" + srs +
+           "\"><g:exterior><g:CompositeSurface>" + cube_polys(z0, id) +
+           "</g:CompositeSurface></g:exterior></g:Solid></b:lod2Solid>"
+           // A wall beside the solid: not doubled into it, and said so.
+           "<b:boundedBy><b:WallSurface><b:lod2MultiSurface><g:MultiSurface><g:surfaceMember><g:Polygon><g:exterior>"
+           "<g:LinearRing><g:posList>5 5 0 6 5 0 6 5 1 5 5 0</g:posList></g:LinearRing></g:exterior></g:Polygon>"
+           "</g:surfaceMember></g:MultiSurface></b:lod2MultiSurface></b:WallSurface></b:boundedBy>"
+           "</b:Building></core:cityObjectMember>";
+  };
+  const std::string xml = std::string(kHead2) + building("a", "urn:ogc:def:crs:EPSG::7415", 10.5) +
+                          building("b", "EPSG:28992", 0) + "</core:CityModel>";
+  const auto r = read_gml(write("crs.gml", xml));
+  EXPECT_EQ(r.header.crs, "EPSG:7415");
+  EXPECT_EQ(r.header.root["transform"]["translate"], json({0.0, 0.0, 0.0}));  // first building's corner, floored
+  ASSERT_EQ(r.features.size(), 2u);
+  ASSERT_EQ(r.features[0].problems.size(), 1u);
+  EXPECT_EQ(r.features[0].problems[0], "a: 1 lod2 surface(s) outside the lod2Solid not carried");
+  ASSERT_EQ(r.problems.size(), 1u);
+  EXPECT_NE(r.problems[0].find("1 buildings have an srsName other than the file's (b has srsName \"EPSG:28992\")"),
+            std::string::npos)
+      << r.problems[0];
+}
+
 TEST_F(CityGmlSynthetic, UnresolvedXlinkIsNotedAndTheRestKept) {
   const std::string xml = std::string(kHead2) + R"(<core:cityObjectMember><b:Building g:id="X">
 <b:lod2MultiSurface><g:MultiSurface>)" + cube_polys() +
