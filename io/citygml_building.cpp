@@ -141,7 +141,7 @@ struct LodContent {
 
 class Converter {
  public:
-  Converter(const xmlNode* building, std::string id) : id_(std::move(id)), geo_(building, id_) {}
+  Converter(const xmlNode* building, std::string id) : id_(std::move(id)), geo_(building) {}
 
   ConvertedBuilding run(const xmlNode* building) {
     ConvertedBuilding out;

@@ -52,8 +52,7 @@ size_t GeometryReader::KeyHash::operator()(const Key& k) const {
   return h(k.x) ^ (h(k.y) * 0x9e3779b97f4a7c15ULL) ^ (h(k.z) * 0xc2b2ae3d27d4eb4fULL);
 }
 
-GeometryReader::GeometryReader(const xmlNode* building, std::string building_id)
-    : id_(std::move(building_id)), root_(building) {
+GeometryReader::GeometryReader(const xmlNode* building) : root_(building) {
   // Iterative walk: buildings can be deep, and the stack of the reader thread is not ours.
   std::vector<const xmlNode*> stack{building};
   while (!stack.empty()) {

@@ -34,7 +34,7 @@ struct Geometry {
 class GeometryReader {
  public:
   // Indexes every gml:id below `building` (the scope of xlinks) and notes the first srsName.
-  GeometryReader(const xmlNode* building, std::string building_id);
+  explicit GeometryReader(const xmlNode* building);
 
   // The content of a geometry property (lod2Solid, lod2MultiSurface, ...), following xlink:href.
   // nullopt when it holds nothing usable (the reason is in notes() or fatal()).
@@ -71,7 +71,6 @@ class GeometryReader {
     size_t operator()(const Key& k) const;
   };
 
-  std::string id_;
   const xmlNode* root_;
   std::unordered_map<std::string, const xmlNode*> by_id_;
   std::unordered_map<Key, uint32_t, KeyHash> pool_;
