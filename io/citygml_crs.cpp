@@ -2,6 +2,8 @@
 
 #include <regex>
 
+#include "io/crs.hpp"
+
 namespace mc::io::citygml {
 
 namespace {
@@ -25,14 +27,19 @@ std::string adv_code(const std::string& name) {
 
 std::string reference_system(const std::string& srs_name) {
   std::string code;
-  std::smatch m;
-  // The first EPSG code: for compound URNs the horizontal CRS (a compound EPSG code for the pair
-  // cannot be derived from the two codes).
-  static const std::regex epsg(R"(EPSG(?:/[^/]*/|:[^:,]*:|:)(\d+))", std::regex::icase);
-  if (std::regex_search(srs_name, m, epsg))
-    code = m[1].str();
-  else if (srs_name.find("adv:crs:") != std::string::npos || srs_name.find("ADV:CRS:") != std::string::npos)
+  if (srs_name.find("adv:crs:") != std::string::npos || srs_name.find("ADV:CRS:") != std::string::npos) {
     code = adv_code(srs_name);
+  } else {
+    // A compound URN ("urn:ogc:def:crs,crs:EPSG::25832,crs:EPSG::7837") by its horizontal part: a
+    // compound EPSG code cannot be derived from the two codes.
+    std::string single = srs_name;
+    if (const auto at = srs_name.find(",crs:"); at != std::string::npos) {
+      const auto end = srs_name.find(',', at + 1);
+      single = "urn:ogc:def:crs:" + srs_name.substr(at + 5, end == std::string::npos ? end : end - at - 5);
+    }
+    const std::string epsg = normalize_crs(single);  // "EPSG:<code>" for the OGC spellings
+    if (epsg.rfind("EPSG:", 0) == 0) code = epsg.substr(5);
+  }
   return code.empty() ? "" : "https://www.opengis.net/def/crs/EPSG/0/" + code;
 }
 
