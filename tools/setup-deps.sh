@@ -8,6 +8,7 @@ PKGS=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
   libtbb-dev libembree-dev libgeographiclib-dev libproj-dev
   nlohmann-json3-dev libyaml-cpp-dev libxml2-dev
+  python3  # tools/gen_citygml.py: the CityGML streaming-memory test generates its input
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev
   clang libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and clang's sanitizers
