@@ -11,7 +11,7 @@ PKGS=(
   python3  # tools/gen_citygml.py: the CityGML streaming-memory test generates its input
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev
-  slurm-wlm munge python3  # tests/slurm: a one-node Slurm cluster on localhost (python3: tile cutting, checks)
+  slurm-wlm munge  # tests/slurm: a one-node Slurm cluster on localhost for the job-array test
   clang libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and clang's sanitizers
 )
 
