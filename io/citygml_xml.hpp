@@ -29,9 +29,6 @@ inline bool is_generics_ns(std::string_view uri) {
 inline bool gml(const xmlNode* n, std::string_view name) {
   return is_element(n) && local(n) == name && is_gml_ns(ns_uri(n));
 }
-inline bool citygml(const xmlNode* n, std::string_view name) {
-  return is_element(n) && local(n) == name && is_citygml_ns(ns_uri(n));
-}
 
 // Element children in document order: for (auto* c = first_child(n); c; c = next_sibling(c)).
 inline xmlNode* next_sibling(const xmlNode* n) {
