@@ -28,6 +28,7 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "sigma", &d.sigma},
       {"decompose", "k", &d.k},
       {"decompose", "concave_thresh", &d.concave_thresh},
+      {"decompose", "cvx_thresh", &d.cvx_thresh},
       {"decompose", "with_bisector", &d.with_bisector},
       {"decompose", "cut_mode", &d.cut_mode},
       {"decompose", "same_vol_factor", &d.same_vol_factor},

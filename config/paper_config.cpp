@@ -24,6 +24,7 @@ const std::map<std::string, std::string> kPaperToOurs = {
     {"dist_thresh", "preprocess.dist_thresh"},
     {"cell_size", "preprocess.cell_size"},
     {"concave_thresh", "decompose.concave_thresh"},
+    {"cvx_thresh", "decompose.cvx_thresh"},
     {"min_points", "preprocess.min_points"},
     {"max_points", "preprocess.max_points"},
     {"sigma", "decompose.sigma"},
@@ -38,7 +39,8 @@ const char* const kRequired[] = {"max_distance", "max_angle",      "min_region",
                                  "dist_thresh",  "cell_size",      "concave_thresh",
                                  "min_points",   "max_points",     "sigma"};
 // Read by the research code but without effect there (dead parameters, or file-name only).
-const char* const kInert[] = {"cvx_thresh", "extended_plane_ch", "fewer_comp"};
+// (cvx_thresh is dead in the research code too, but here it does what it was meant for.)
+const char* const kInert[] = {"extended_plane_ch", "fewer_comp"};
 // Extra objective terms of the paper's Appendix D, not implemented here.
 const char* const kTerms[] = {"max_vol", "symmetry", "central", "decentral"};
 const char* const kTermWeights[] = {"max_vol_weight", "symmetry_weight", "central_weight",
@@ -132,6 +134,7 @@ Params load_paper_config(const std::string& path, std::vector<std::string>* warn
     else if (key == "dist_thresh") p.pre.dist_thresh = r.number(key);
     else if (key == "cell_size") p.pre.cell_size = r.number(key);
     else if (key == "concave_thresh") p.dec.concave_thresh = r.number(key);
+    else if (key == "cvx_thresh") p.dec.cvx_thresh = r.number(key);
     else if (key == "min_points") p.pre.min_points = r.integer(key);
     else if (key == "max_points") p.pre.max_points = r.integer(key);
     else if (key == "sigma") p.dec.sigma = r.number(key);

@@ -272,7 +272,7 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
     r.component = work[i].component;
     r.volume = info.volume;
     r.hull_volume = info.hull_volume;
-    r.convexity = info.delta == 0 ? 1.0 : info.convexity();
+    r.convexity = info.delta == 0 && !info.nearly_convex ? 1.0 : info.convexity();
     std::vector<uint32_t> nb;
     for (uint32_t c : work[i].cells)
       for (uint32_t f : cx.cell(c).facets) {

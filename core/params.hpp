@@ -41,6 +41,10 @@ struct DecomposeParams {
   double sigma = 2.0;            // ε of cost = g + ε·h; 1 = optimal search
   int k = 4;                     // concave edges per attached part in h
   double concave_thresh = 1.0;   // in units of π: keep lines with angle >= concave_thresh·π
+  // Parts with V/V_CH >= cvx_thresh count as convex: no concave lines, Δ = 0 in the objective,
+  // never cut, and neighbours whose union is that convex may merge. The research code reads
+  // this key but never uses it (algorithm.md §2.4); 1 = only exactly convex parts.
+  double cvx_thresh = 0.995;
   bool with_bisector = true;
   std::string cut_mode = "A";    // A, H, V, HV, HI, VI
   double same_vol_factor = 1e-5; // duplicate / sliver tolerance relative to the root volume

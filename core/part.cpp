@@ -344,6 +344,14 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
   info.e_all = static_cast<int>(info.lines.size());
   const double sig = ctx.level * ctx.a_diag;
   for (const auto& L : info.lines) info.e_sig += L.weight >= sig;
+  if (info.delta > 0 && info.volume >= dec.cvx_thresh * info.hull_volume) {
+    // Convex enough (cvx_thresh): what is left are dents a planner would not cut at.
+    info.nearly_convex = true;
+    info.lines.clear();
+    info.e_all = info.e_sig = 0;
+    info.delta = 0;
+    return info;
+  }
 
   // Candidate planes of the significant lines (algorithm.md §4.5).
   std::vector<std::pair<uint32_t, double>> cands;  // plane id, accumulated weight

@@ -75,6 +75,7 @@ struct PartInfo {
   int e_all = 0;          // concave lines with non-negligible weight
   int e_sig = 0;          // lines significant at this level
   int pinch_edges = 0;    // boundary edges shared by more than two boundary faces
+  bool nearly_convex = false;  // V/V_CH >= cvx_thresh but not exactly convex: counted as convex
   std::vector<ConcaveLine> lines;     // reflex lines, by decreasing weight
   std::vector<uint32_t> candidates;   // cutting planes, by decreasing weight
   double convexity() const { return hull_volume > 0 ? volume / hull_volume : 0.0; }

@@ -15,12 +15,11 @@ struct Outcome {
   Decomposition dec;
 };
 
-Outcome run(const PolygonMesh& m, double cell = 0.5) {
+Outcome run(const PolygonMesh& m, double cell = 0.5, DecomposeParams dp = {}) {
   PreprocessParams pp;
   pp.cell_size = cell;
   pp.dist_thresh = cell / 4;
   pp.compute_hausdorff = false;
-  DecomposeParams dp;
   const auto deadline = Clock::now() + std::chrono::seconds(120);
   Outcome r{preprocess(m, pp, deadline), {}};
   r.dec = decompose(r.pre, dp, deadline);
@@ -73,6 +72,26 @@ TEST(Decompose, BoxGivesOnePart) {
   EXPECT_EQ(r.dec.levels.back().parts.size(), 1u);
   EXPECT_NEAR(r.dec.levels.back().convexity, 1.0, 1e-9);
   expect_valid_levels(r, 300.0);
+}
+
+// A 20 x 10 x 10 block with a 0.5 x 1 notch at one corner: 99.87% convex. With the default
+// cvx_thresh (0.995) it stays one part; requiring exact convexity cuts it into two.
+TEST(Decompose, NearlyConvexPartIsNotCut) {
+  PolygonMesh m;
+  test::add_prism(m, {{0, 0}, {20, 0}, {20, 9}, {19.5, 9}, {19.5, 10}, {0, 10}}, 0, 10);
+  const double vol = 2000.0 - 0.5 * 1 * 10;
+  const Outcome loose = run(m);
+  EXPECT_NEAR(loose.pre.components[0].volume, vol, 1e-6);
+  EXPECT_EQ(loose.dec.levels.back().parts.size(), 1u);
+  // Reported as it is: the hull cuts the notch's corner diagonally (0.5 x 1 / 2 x 10 less).
+  EXPECT_NEAR(loose.dec.levels.back().convexity, vol / (2000.0 - 2.5), 1e-9);
+  expect_valid_levels(loose, vol);
+  DecomposeParams exact;
+  exact.cvx_thresh = 1.0;
+  const Outcome strict = run(m, 0.5, exact);
+  EXPECT_EQ(strict.dec.levels.back().parts.size(), 2u);
+  EXPECT_NEAR(strict.dec.levels.back().min_convexity, 1.0, 1e-9);
+  expect_valid_levels(strict, vol);
 }
 
 TEST(Decompose, LShapeGivesTwoConvexParts) {
