@@ -17,6 +17,8 @@
 // Merged CSV: one header, "tile" as the first column, then the union of the tiles' columns in
 // first-seen order (tiles with other columns, e.g. other output levels, get empty fields and a
 // warning), then every row of every tile in tile order.
+// Memory: one tile's report and CSV at a time (entries and rows are spooled to scratch files) plus
+// the set of building ids needed to find duplicates.
 #pragma once
 #include <map>
 #include <string>
