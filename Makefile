@@ -28,7 +28,11 @@ demo: build
 	@$(BUILD)/tools/morphcut-city $(DEMO_INPUT) -o $(DEMO_OUT)/demo.morphcut.city.json \
 	  --report $(DEMO_OUT)/demo.morphcut.report.json --summary $(DEMO_OUT)/demo.morphcut.csv; \
 	  rc=$$?; [ $$rc -le 1 ] || exit $$rc
-	@echo "demo outputs in $(DEMO_OUT)/: demo.morphcut.city.json, demo.morphcut.report.json, demo.morphcut.csv"
+	@# every part checked (valid solids, tiling each building's cell); its summary is the last lines
+	@$(BUILD)/tools/morphcut-city validate $(DEMO_OUT)/demo.morphcut.city.json --json $(DEMO_OUT)/demo.validate.json \
+	  > $(DEMO_OUT)/demo.validate.txt; rc=$$?; tail -2 $(DEMO_OUT)/demo.validate.txt; [ $$rc -le 1 ] || exit $$rc
+	@echo "demo outputs in $(DEMO_OUT)/: demo.morphcut.city.json, demo.morphcut.report.json, demo.morphcut.csv," \
+	  "demo.validate.json (validation report; invalid objects listed in demo.validate.txt)"
 
 bench: build
 	@$(BUILD)/tools/bench_cityjson_io

@@ -36,7 +36,9 @@ const char* kFooter = R"(Outputs (written to the current directory unless given)
            the input unchanged (CityGML input: its buildings converted to CityJSON 2.0, see the
            README) plus, per building and output LoD level, convex BuildingParts
            <building id>-mc<level index>-<part index> with closed Solids, and the attributes
-           morphcut_status, morphcut_reason, morphcut_parts, morphcut_levels, morphcut_hausdorff
+           morphcut_status, morphcut_reason, morphcut_parts, morphcut_levels, morphcut_hausdorff,
+           morphcut_cell_volume (m³, the singleton cell: every level's parts add up to it;
+           `morphcut-city validate OUTPUT` checks that and every part, see its --help)
   REPORT   <stem>.morphcut.report.json: version, effective config, input hash, timings, sizes
            and per-level results for every building
   SUMMARY  <stem>.morphcut.csv: one RFC 4180 row per building for planners (parts per level,

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/config.hpp"
+#include "pipeline/validate.hpp"
 
 namespace mc::test {
 
@@ -124,6 +125,25 @@ inline std::string solid_defect(const json& geometry, const json& vertices) {
     if (back == edges.end() || back->second != 1) return "edge without its opposite";
   }
   return {};
+}
+
+// `morphcut-city validate` on an output (pipeline/validate.hpp): every part a valid Solid, parts
+// of a level not overlapping and adding up to the cell volume, structure sound. Call it on every
+// output city a test produces: EXPECT-fails with the invalid objects' errors. `known_defect`: errors
+// containing this text are printed instead (an input with a documented, still open core defect;
+// every other check keeps failing the test).
+inline void expect_valid_output(const std::string& path, size_t min_parts = 1, const std::string& known_defect = "") {
+  std::string errors, known;
+  const auto s = mc::pipeline::validate_city(path, {}, [&](const mc::pipeline::ObjectReport& r) {
+    for (const auto& e : r.errors) {
+      const std::string line = r.id + ": " + std::to_string(e.code) + " " + e.name + ": " + e.message + "\n";
+      (!known_defect.empty() && line.find(known_defect) != std::string::npos ? known : errors) += line;
+    }
+  });
+  EXPECT_EQ(errors, "") << path;
+  EXPECT_TRUE(s.file_problems.empty()) << path << ": " << (s.file_problems.empty() ? "" : s.file_problems.front());
+  EXPECT_GE(s.counts.parts, min_parts) << path;
+  if (!known.empty()) std::fprintf(stderr, "known defect (not failed): %s", known.c_str());
 }
 
 struct ProcessResult {

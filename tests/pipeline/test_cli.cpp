@@ -63,12 +63,16 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
   const json report = json::parse(slurp(dir / "3dbag_b2.morphcut.report.json"));
   EXPECT_EQ(report["config_file"], "quick.yaml");
   EXPECT_EQ(report["config"]["decompose"]["levels"], json::array({0.1}));
+  // The output passes the binary's own validator (exit 0 = every object valid).
+  const ProcessResult v = run_command(cli_path() + " validate " + (dir / "3dbag_b2.morphcut.city.jsonl"));
+  EXPECT_EQ(v.exit_code, 0) << v.output;
   // --quiet: nothing on stderr for a clean run.
   const ProcessResult q = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
                                       " --config quick.yaml -q -o q.city.jsonl --no-report --no-summary");
   EXPECT_EQ(q.exit_code, 0);
   EXPECT_EQ(q.output, "");
   EXPECT_TRUE(fs::exists(dir / "q.city.jsonl"));
+  expect_valid_output(dir / "q.city.jsonl");
 }
 
 TEST(Cli, StdinIsReadAsCityJsonSeq) {
@@ -86,6 +90,7 @@ TEST(Cli, StdinIsReadAsCityJsonSeq) {
   EXPECT_EQ(report["counts"]["ok"], 2);
   EXPECT_TRUE(report["input"]["sha256"].is_null());
   EXPECT_TRUE(fs::exists(dir / "stdin.morphcut.city.jsonl"));
+  expect_valid_output(dir / "stdin.morphcut.city.jsonl");
 }
 
 // SIGINT / SIGTERM in the middle of a tile: exit 130 / 143, no output, no temp file.
