@@ -6,6 +6,7 @@
 #include <map>
 #include <cmath>
 #include <queue>
+#include <tuple>
 #include <unordered_set>
 
 namespace mc {
@@ -203,7 +204,9 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
     size_t n = 0;
     for (const auto& [e, inc] : uses)
       if (inc.size() > 2) ++n;
-    return std::make_pair(n, uses);
+    auto vertices = pinch_vertices(uses, [](const auto& fc) { return fc.first; });
+    n += vertices.size();
+    return std::make_tuple(n, uses, std::move(vertices));
   };
   auto flip = [](std::vector<uint32_t>& cells, uint32_t c) {
     auto it = std::lower_bound(cells.begin(), cells.end(), c);
@@ -216,7 +219,7 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
   size_t flips = 0;
   std::sort(inside.begin(), inside.end());
   for (;;) {
-    auto [count, uses] = pinch_count(inside);
+    auto [count, uses, vertices] = pinch_count(inside);
     if (count == 0) return flips;
     std::vector<uint32_t> around;
     for (const auto& [e, inc] : uses) {
@@ -225,6 +228,16 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
         for (uint32_t x : {c, cx.other_side(f, c)})
           if (x != CellComplex::kNone && !flipped.count(x)) around.push_back(x);
       if (!around.empty()) break;  // the first pinch edge that can still be repaired
+    }
+    // Then pinched vertices: the cells on either side of the boundary facets around the vertex.
+    for (size_t i = 0; around.empty() && i < vertices.size(); ++i) {
+      const uint32_t v = vertices[i];
+      for (const auto& [e, inc] : uses) {
+        if (uint32_t(e >> 32) != v && uint32_t(e & 0xffffffffu) != v) continue;
+        for (const auto& [f, c] : inc)
+          for (uint32_t x : {c, cx.other_side(f, c)})
+            if (x != CellComplex::kNone && !flipped.count(x)) around.push_back(x);
+      }
     }
     if (around.empty()) return flips;  // every cell around every pinch has flipped once: give up
     std::sort(around.begin(), around.end(), [&](uint32_t a, uint32_t b) {
@@ -236,7 +249,7 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
     for (uint32_t c : around) {
       std::vector<uint32_t> trial = inside;
       flip(trial, c);
-      if (pinch_count(trial).first < count) {
+      if (std::get<0>(pinch_count(trial)) < count) {
         pick = c;
         break;
       }

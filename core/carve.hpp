@@ -54,8 +54,9 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
 // Sample points uniformly inside a live convex cell (deterministic for `seed`).
 std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, uint64_t seed);
 
-// Makes the union of `inside` 2-manifold along edges: at an edge used by more than two boundary
-// facets (two cells touching only along it) the smallest cell around the edge changes side.
+// Makes the union of `inside` 2-manifold: at an edge used by more than two boundary facets (two
+// cells touching only along it), or at a vertex where two fans of boundary facets meet, a small
+// cell around it changes side (each cell at most once).
 // Returns the number of cells flipped; `flipped_volume` accumulates their volume.
 size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume);
 

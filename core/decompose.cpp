@@ -66,9 +66,26 @@ Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
     return pr;
   }
   std::vector<uint32_t> cells = w.cells;
+  // A candidate passing a hair (δ/10) from a cell vertex without going through it would make
+  // vertices that collapse when the output is quantised (invalid solids): that cell is left
+  // whole, and a cut along the plane follows the cell's boundary there instead (the parts stay
+  // unions of cells, hence closed). Same rule as in carving.
+  const double hair = 0.1 * ctx.dist;
+  auto hair_close = [&](uint32_t c, uint32_t plane) {
+    const Plane& pl = reg[plane];
+    for (uint32_t v : cx.cell_vertices(c)) {
+      const double s = std::abs(pl.signed_distance(cx.point(v)));
+      if (s < hair && cx.vertex_side(v, plane) != 0) return true;
+    }
+    return false;
+  };
   for (uint32_t plane : info.candidates) {
     std::vector<uint32_t> next;
     for (uint32_t c : cells) {
+      if (hair_close(c, plane)) {
+        next.push_back(c);
+        continue;
+      }
       if (auto r = cx.split(c, plane)) {
         next.push_back(r->neg);
         next.push_back(r->pos);

@@ -55,9 +55,10 @@ CellSpace make_space(const CellComplex& cx, const std::vector<uint32_t>& cells) 
 }
 
 bool has_pinch_edge(const CellComplex& cx, const std::vector<uint32_t>& cells) {
-  for (const auto& [edge, facets] : boundary_edge_uses(cx, cells))
+  const auto uses = boundary_edge_uses(cx, cells);
+  for (const auto& [edge, facets] : uses)
     if (facets.size() > 2) return true;
-  return false;
+  return !pinch_vertices(uses, [](const auto& fc) { return fc.first; }).empty();
 }
 
 std::vector<Bits> components(const CellSpace& s, const Bits& bits) {
@@ -318,6 +319,8 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
                    angle, reflex};
     edges.push_back(d);
   }
+  // A vertex where two fans of faces meet is as invalid in a solid as a pinch edge.
+  info.pinch_edges += static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
   std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
 

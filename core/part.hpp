@@ -74,7 +74,7 @@ struct PartInfo {
   double delta = 0;       // Δ = V_CH − V (0 for convex parts)
   int e_all = 0;          // concave lines with non-negligible weight
   int e_sig = 0;          // lines significant at this level
-  int pinch_edges = 0;    // boundary edges shared by more than two boundary faces
+  int pinch_edges = 0;    // boundary edges shared by more than two boundary faces, plus pinched vertices
   bool nearly_convex = false;  // V/V_CH >= cvx_thresh but not exactly convex: counted as convex
   std::vector<ConcaveLine> lines;     // reflex lines, by decreasing weight
   std::vector<uint32_t> candidates;   // cutting planes, by decreasing weight
@@ -83,7 +83,8 @@ struct PartInfo {
 
 PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve);
 
-// Whether the boundary of a set of cells has an edge used by more than two boundary facets.
+// Whether the boundary of a set of cells has an edge used by more than two boundary facets, or
+// a vertex where two separate fans of boundary facets meet.
 bool has_pinch_edge(const CellComplex& cx, const std::vector<uint32_t>& cells);
 
 // Connected components (through shared facets) of the cells of `bits`, ascending by first cell.

@@ -35,6 +35,42 @@ std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx
 std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_uses(const CellComplex& cx,
                                                                                   const std::vector<uint32_t>& cells);
 
+// Vertices where a boundary is pinched: its faces around the vertex form more than one fan
+// (joined through edges used by exactly two faces). `uses`: edge key (min << 32 | max) -> the
+// faces using the edge; `face_of` maps an element of those lists to a face id. Sorted.
+template <class Uses, class FaceOf>
+std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> node;  // (vertex, face) -> union-find id
+  std::vector<uint32_t> parent;
+  auto id = [&](uint32_t v, uint32_t f) {
+    auto [it, added] = node.try_emplace({v, f}, static_cast<uint32_t>(parent.size()));
+    if (added) parent.push_back(it->second);
+    return it->second;
+  };
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& [key, inc] : uses) {
+    for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)}) {
+      for (const auto& x : inc) id(v, face_of(x));
+      if (inc.size() == 2) parent[find(id(v, face_of(inc[0])))] = find(id(v, face_of(inc[1])));
+    }
+  }
+  std::vector<uint32_t> out;
+  uint32_t last = UINT32_MAX, root = UINT32_MAX;
+  for (const auto& [vf, i] : node) {  // ordered by vertex
+    const uint32_t r = find(i);
+    if (vf.first != last) {
+      last = vf.first;
+      root = r;
+    } else if (r != root && (out.empty() || out.back() != vf.first)) {
+      out.push_back(vf.first);
+    }
+  }
+  return out;
+}
+
 Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells,
                         const std::vector<uint32_t>* solid = nullptr);
 

@@ -91,6 +91,13 @@ TEST(SolidCheck, ClosedBoxPassesDefectsAreNamed) {
   Shell flipped = cube;
   std::reverse(flipped[0][0].begin(), flipped[0][0].end());
   EXPECT_NE(closed_shell_defect(flipped).find("same direction"), std::string::npos);
+  // Two cubes sharing only vertex 7 (the second one's corner 0): every edge is fine, the vertex not.
+  Shell two = cube;
+  for (auto face : cube) {
+    for (auto& v : face[0]) v = v == 0 ? 7 : v + 10;
+    two.push_back(face);
+  }
+  EXPECT_NE(closed_shell_defect(two).find("two separate fans"), std::string::npos);
 }
 
 TEST(EncodeSolid, SnapsToTheTransformGridDedupesAndKeepsLabels) {
