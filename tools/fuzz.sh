@@ -113,7 +113,7 @@ for t in $targets; do
   "$bin" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="$artifacts" "$corpus" "$build/fuzz/seeds/$t" "$regress" >"$log" 2>&1 || rc=$?
   execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
-  speed=$(grep -o 'stat::average_exec_per_sec: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
+  speed=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
   crashes=$(find "$artifacts" -type f | wc -l)
   echo "$t: ${execs:-?} executions in ${seconds} s (${speed:-?}/s), corpus $(ls "$corpus" | wc -l) files, crashes $crashes (exit $rc)"
   if ((rc != 0)); then

@@ -49,13 +49,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const mc::PolygonMesh mesh = decode(data, size);
   mc::Params p;
   p.pre.min_points = 10;
-  p.pre.max_points = 200;
+  p.pre.max_points = 100;
   p.pre.oracle_rays = 3;
   p.dec.levels = {0.1, 0.01};
   p.dec.node_budget = 200;
   p.dec.max_candidates = 6;
   p.dec.max_children = 8;
-  const auto deadline = mc::Clock::now() + std::chrono::milliseconds(500);
+  const auto deadline = mc::Clock::now() + std::chrono::milliseconds(250);
   try {
     mc::Preprocessed pre = mc::preprocess(mesh, p.pre, deadline);
     const mc::PolygonMesh cell = mc::singleton_mesh(pre);

@@ -161,7 +161,10 @@ TEST(BadInput, BadFeatureMembersAreReportedPerFeature) {
   for (const auto& f : w.features) ids.push_back(f.id);
   EXPECT_EQ(ids, (std::vector<std::string>{"novertices", "vertices_wrong_type", "noid", "other", "good"}));
   EXPECT_EQ(w.features[0].problems,
-            (std::vector<std::string>{"novertices: feature line 2 has no \"vertices\" array; its geometry cannot be read"}));
+            (std::vector<std::string>{"novertices: feature line 2 has no \"vertices\" array; its geometry cannot be read",
+                                      "novertices: geometry #0: vertex index 0 out of range (0 vertices)",
+                                      "novertices: geometry #0: vertex index 1 out of range (0 vertices)",
+                                      "novertices: geometry #0: vertex index 2 out of range (0 vertices)"}));
   EXPECT_EQ(w.features[1].problems,
             (std::vector<std::string>{
                 "vertices_wrong_type: feature line 3 has no \"vertices\" array; its geometry cannot be read"}));
