@@ -98,6 +98,7 @@ for t in $targets; do
   export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}"
   export UBSAN_OPTIONS="${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}"
   log="$build/fuzz/$t.log"
+  if ((replay)); then log="$build/fuzz/$t.replay.log"; fi
   if ((replay)); then
     # Every seed and regression input once; any crash fails.
     if "$bin" -runs=0 -timeout=60 -rss_limit_mb=4096 "$build/fuzz/seeds/$t" "$regress" >"$log" 2>&1; then
