@@ -261,6 +261,38 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
   }
 }
 
+size_t fill_cavities(const CellComplex& cx, std::vector<uint32_t>& inside, double& filled_volume) {
+  std::unordered_set<uint32_t> in(inside.begin(), inside.end());
+  std::unordered_set<uint32_t> reached;
+  std::vector<uint32_t> stack;
+  const std::vector<uint32_t> live = cx.live_cells();
+  for (uint32_t c : live) {
+    if (in.count(c)) continue;
+    for (uint32_t f : cx.cell(c).facets)
+      if (cx.other_side(f, c) == CellComplex::kNone) {
+        if (reached.insert(c).second) stack.push_back(c);
+        break;
+      }
+  }
+  while (!stack.empty()) {
+    const uint32_t c = stack.back();
+    stack.pop_back();
+    for (uint32_t f : cx.cell(c).facets) {
+      const uint32_t o = cx.other_side(f, c);
+      if (o != CellComplex::kNone && !in.count(o) && reached.insert(o).second) stack.push_back(o);
+    }
+  }
+  size_t filled = 0;
+  for (uint32_t c : live)
+    if (!in.count(c) && !reached.count(c)) {
+      inside.push_back(c);
+      filled_volume += cx.cell_volume(c);
+      ++filled;
+    }
+  std::sort(inside.begin(), inside.end());
+  return filled;
+}
+
 std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx, const std::vector<uint32_t>& cells) {
   std::unordered_set<uint32_t> in(cells.begin(), cells.end());
   std::unordered_set<uint32_t> seen;

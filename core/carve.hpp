@@ -60,6 +60,10 @@ std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, u
 // Returns the number of cells flipped; `flipped_volume` accumulates their volume.
 size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume);
 
+// Fills cavities: outside cells that cannot reach the carving box's boundary through other outside
+// cells (voids enclosed by the building) become inside. Returns how many; adds their volume.
+size_t fill_cavities(const CellComplex& cx, std::vector<uint32_t>& inside, double& filled_volume);
+
 // Face-connected components of a set of cells (through facets with both sides in the set).
 std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx, const std::vector<uint32_t>& cells);
 

@@ -114,10 +114,17 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // Singleton cells: every face-connected component of the interior cells, after making the
   // interior 2-manifold along edges (a solid touching itself along an edge is no valid solid).
   std::vector<uint32_t> inside = cr.inside;
+  // A void enclosed by the building would be an inner shell of the cell and of a part: filled.
+  double filled = 0;
+  size_t cavities = fill_cavities(*out.complex, inside, filled);
   double flipped = 0;
   if (const size_t n = remove_pinch_edges(*out.complex, inside, flipped))
     out.problems.push_back("changed the side of " + std::to_string(n) + " cell(s) at pinch edges (volume " +
                            std::to_string(flipped) + ") to make the singleton cell 2-manifold");
+  cavities += fill_cavities(*out.complex, inside, filled);
+  if (cavities)
+    out.problems.push_back("filled " + std::to_string(cavities) + " enclosed outside cell(s) (volume " +
+                           std::to_string(filled) + ") so that the singleton cell has no cavity");
   std::sort(inside.begin(), inside.end());
   if (inside.empty()) throw std::runtime_error("no interior left after removing pinch edges");
   auto comps = connected_components(*out.complex, inside);

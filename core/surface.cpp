@@ -1,6 +1,7 @@
 #include "core/surface.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <map>
 #include <unordered_map>
@@ -94,7 +95,11 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
       }
     }
   }
-  // 2. Chain each group's edges into loops (deterministic: smallest start, smallest next).
+  // 2. Chain each group's edges into loops. Where the polygon touches itself at a vertex (two
+  //    outgoing edges), the walk takes the sharpest left turn, so that every loop keeps the face
+  //    on its left without crossing itself and the loops meet there corner to corner (any other
+  //    pairing makes a ring that joins two separate fans of faces: not a 2-manifold vertex).
+  //    Deterministic: walks start at the smallest vertex with a single outgoing edge if any.
   struct RawFace {
     uint32_t plane;
     bool plus, cut;
@@ -107,8 +112,17 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
       for (int i = 0; i < n; ++i) next[uint32_t(e >> 32)].push_back(uint32_t(e & 0xffffffffu));
     for (auto& [a, bs] : next) std::sort(bs.begin(), bs.end(), std::greater<>());
     RawFace rf{std::get<0>(key), std::get<1>(key), std::get<2>(key), {}};
+    Vec3 normal = cx.planes()[rf.plane].n;
+    if (!rf.plus) normal = -normal;
+    const Projector pr(normal);
+    auto turn = [&](uint32_t u, uint32_t v, uint32_t w) {  // signed angle u->v->w seen from outside
+      const Vec3 &a = cx.point(u), &b = cx.point(v), &c = cx.point(w);
+      const double dx1 = b[pr.u] - a[pr.u], dy1 = b[pr.v] - a[pr.v], dx2 = c[pr.u] - b[pr.u], dy2 = c[pr.v] - b[pr.v];
+      return std::atan2(dx1 * dy2 - dy1 * dx2, dx1 * dx2 + dy1 * dy2);
+    };
     while (true) {
-      auto it = std::find_if(next.begin(), next.end(), [](const auto& kv) { return !kv.second.empty(); });
+      auto it = std::find_if(next.begin(), next.end(), [](const auto& kv) { return kv.second.size() == 1; });
+      if (it == next.end()) it = std::find_if(next.begin(), next.end(), [](const auto& kv) { return !kv.second.empty(); });
       if (it == next.end()) break;
       const uint32_t start = it->first;
       std::vector<uint32_t> loop;
@@ -116,9 +130,17 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
       while (true) {
         auto& bs = next[v];
         if (bs.empty()) break;  // open chain: reported through the edge counts below
+        size_t pick = bs.size() - 1;
+        if (bs.size() > 1 && !loop.empty()) {
+          double best = -10;
+          for (size_t k = bs.size(); k-- > 0;) {
+            const double t = turn(loop.back(), v, bs[k]);
+            if (t > best + 1e-12) best = t, pick = k;
+          }
+        }
         loop.push_back(v);
-        const uint32_t w = bs.back();
-        bs.pop_back();
+        const uint32_t w = bs[pick];
+        bs.erase(bs.begin() + static_cast<long>(pick));
         v = w;
         if (v == start) break;
       }

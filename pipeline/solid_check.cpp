@@ -26,46 +26,41 @@ std::string closed_shell_defect(const Shell& shell) {
   for (const auto& [a, b] : edges)
     if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a)))
       return "edge " + std::to_string(a) + "-" + std::to_string(b) + " has no opposite (boundary edge)";
-  // Vertex umbrellas: the faces around each vertex, joined through their shared edges, must form
-  // one fan (two fans meeting at a vertex is not a 2-manifold either).
-  std::map<std::pair<int64_t, size_t>, size_t> node;  // (vertex, face) -> union-find id
-  std::vector<size_t> parent;
-  std::map<std::pair<int64_t, int64_t>, size_t> edge_face;  // directed edge -> face
-  auto id = [&](int64_t v, size_t f) {
-    auto [it, added] = node.try_emplace({v, f}, parent.size());
-    if (added) parent.push_back(it->second);
-    return it->second;
+  // Vertex umbrellas: the face corners (prev, v, next) at each vertex must link its edges into
+  // one cycle (two fans meeting at a vertex, or a ring touching itself, are not 2-manifold).
+  std::map<int64_t, std::map<int64_t, int64_t>> fan;  // vertex -> neighbour -> union-find parent
+  auto find = [](std::map<int64_t, int64_t>& uf, int64_t x) {
+    while (uf[x] != x) x = uf[x] = uf[uf[x]];
+    return x;
   };
-  auto find = [&](size_t x) {
+  for (const auto& surface : shell)
+    for (const auto& ring : surface)
+      for (size_t i = 0; i < ring.size(); ++i) {
+        const int64_t v = ring[i], prev = ring[(i + ring.size() - 1) % ring.size()], next = ring[(i + 1) % ring.size()];
+        auto& uf = fan[v];
+        uf.try_emplace(prev, prev);
+        uf.try_emplace(next, next);
+        uf[find(uf, prev)] = find(uf, next);
+      }
+  for (auto& [v, uf] : fan) {
+    const int64_t first = find(uf, uf.begin()->first);
+    for (auto& [n, p] : uf)
+      if (find(uf, n) != first) return "vertex " + std::to_string(v) + " joins two separate fans of faces";
+  }
+  // One shell: every face reachable from every other through shared edges.
+  std::map<std::pair<int64_t, int64_t>, size_t> edge_face;  // directed edge -> surface
+  for (size_t f = 0; f < shell.size(); ++f)
+    for (const auto& ring : shell[f])
+      for (size_t i = 0; i < ring.size(); ++i) edge_face[{ring[i], ring[(i + 1) % ring.size()]}] = f;
+  std::vector<size_t> parent(shell.size());
+  for (size_t f = 0; f < parent.size(); ++f) parent[f] = f;
+  auto root = [&](size_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (size_t face = 0; face < shell.size(); ++face)
-    for (const auto& ring : shell[face])  // every ring of a surface belongs to its face
-      for (size_t i = 0; i < ring.size(); ++i) edge_face[{ring[i], ring[(i + 1) % ring.size()]}] = face;
-  size_t face = 0;
-  for (const auto& surface : shell) {
-    for (const auto& ring : surface)
-      for (size_t i = 0; i < ring.size(); ++i) {
-        const int64_t a = ring[i], b = ring[(i + 1) % ring.size()];
-        const size_t g = edge_face.at({b, a});
-        for (int64_t v : {a, b}) parent[find(id(v, face))] = find(id(v, g));
-      }
-    ++face;
-  }
-  int64_t last = -1;
-  size_t root = 0;
-  bool first = true;
-  for (const auto& [vf, i] : node) {
-    const size_t r = find(i);
-    if (first || vf.first != last) {
-      first = false;
-      last = vf.first;
-      root = r;
-    } else if (r != root) {
-      return "vertex " + std::to_string(vf.first) + " joins two separate fans of faces";
-    }
-  }
+  for (const auto& [e, f] : edge_face) parent[root(f)] = root(edge_face.at({e.second, e.first}));
+  for (size_t f = 1; f < shell.size(); ++f)
+    if (root(f) != root(0)) return "the faces form more than one connected shell";
   return {};
 }
 

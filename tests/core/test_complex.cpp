@@ -1,4 +1,5 @@
 #include "core/complex.hpp"
+#include "core/carve.hpp"
 
 #include <gtest/gtest.h>
 
@@ -50,6 +51,36 @@ double total_volume(const CellComplex& cx) {
   double v = 0;
   for (uint32_t c : cx.live_cells()) v += cx.cell_volume(c);
   return v;
+}
+
+// A 3 x 3 x 3 grid of cells with every cell inside except the centre: the centre is a cavity
+// (it cannot reach the box boundary through outside cells) and is filled; a corner is not.
+TEST(Carve, EnclosedOutsideCellsAreFilled) {
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box(3));
+  for (int axis = 0; axis < 3; ++axis)
+    for (double at : {1.0, 2.0}) {
+      Vec3 n{0, 0, 0};
+      (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = 1;
+      const uint32_t p = reg.add({n, -at});
+      for (uint32_t c : cx.live_cells()) cx.split(c, p);
+    }
+  ASSERT_EQ(cx.live_cells().size(), 27u);
+  uint32_t centre = CellComplex::kNone, corner = CellComplex::kNone;
+  std::vector<uint32_t> inside;
+  for (uint32_t c : cx.live_cells()) {
+    const Vec3 m = cx.cell_centroid(c);
+    if (std::abs(m.x - 1.5) < 0.1 && std::abs(m.y - 1.5) < 0.1 && std::abs(m.z - 1.5) < 0.1) centre = c;
+    else if (m.x < 1 && m.y < 1 && m.z < 1) corner = c;
+    else inside.push_back(c);
+  }
+  ASSERT_NE(centre, CellComplex::kNone);
+  ASSERT_NE(corner, CellComplex::kNone);
+  double filled = 0;
+  EXPECT_EQ(fill_cavities(cx, inside, filled), 1u);
+  EXPECT_NEAR(filled, 1.0, 1e-12);
+  EXPECT_TRUE(std::binary_search(inside.begin(), inside.end(), centre));
+  EXPECT_FALSE(std::binary_search(inside.begin(), inside.end(), corner));
 }
 
 TEST(CellComplex, BoxCellIsClosedWithUnitVolume) {

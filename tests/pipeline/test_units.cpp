@@ -98,6 +98,13 @@ TEST(SolidCheck, ClosedBoxPassesDefectsAreNamed) {
     two.push_back(face);
   }
   EXPECT_NE(closed_shell_defect(two).find("two separate fans"), std::string::npos);
+  // Two disjoint cubes: closed and manifold everywhere, but two shells.
+  Shell apart = cube;
+  for (auto face : cube) {
+    for (auto& v : face[0]) v += 20;
+    apart.push_back(face);
+  }
+  EXPECT_NE(closed_shell_defect(apart).find("more than one connected shell"), std::string::npos);
 }
 
 TEST(EncodeSolid, SnapsToTheTransformGridDedupesAndKeepsLabels) {
