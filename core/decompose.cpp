@@ -166,6 +166,27 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<Work>& parts, double v_
   }
 }
 
+// The cells of all parts of a level as one space (analysis of parts and of unions of parts).
+struct LevelSpace {
+  CellSpace space;
+  std::unordered_map<uint32_t, uint32_t> local;  // global cell id -> index in `space`
+  LevelSpace(const CellComplex& cx, const std::vector<Work>& work) {
+    std::vector<uint32_t> all;
+    for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
+    std::sort(all.begin(), all.end());
+    space = make_space(cx, all);
+    for (uint32_t i = 0; i < all.size(); ++i) local[all[i]] = i;
+  }
+  Bits bits(const Work& w) const {
+    Bits b(space.words(), 0);
+    for (uint32_t c : w.cells) set_bit(b, local.at(c));
+    return b;
+  }
+};
+
+// Analysis only: generated candidate planes are not registered.
+const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+
 // Merges neighbouring parts while that lowers the level's cost (algorithm.md §6.3 with the
 // whole-building normalisers of §6.8). The search is inflated (σ > 1), keeps only the best
 // children and cuts whole parts by unbounded planes, so it often leaves two convex pieces whose
@@ -177,13 +198,9 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
                              const AnalysisContext& ctx, double n_max, double delta0) {
   const CellComplex& cx = *pre.complex;
   if (work.size() < 2) return;
-  std::vector<uint32_t> all;
-  for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
-  std::sort(all.begin(), all.end());
-  const CellSpace space = make_space(cx, all);
-  std::unordered_map<uint32_t, uint32_t> local;
-  for (uint32_t i = 0; i < all.size(); ++i) local[all[i]] = i;
-  const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+  const LevelSpace ls(cx, work);
+  const CellSpace& space = ls.space;
+  const auto& local = ls.local;
   const double d0 = delta0 > 0 ? delta0 : 1.0;
   // Cost change of replacing parts a and b by their union u (|P| drops by one).
   auto gain = [&](const PartInfo& a, const PartInfo& b, const PartInfo& u) {
@@ -193,12 +210,8 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
   };
   std::vector<PartInfo> info;
   std::vector<bool> alive(work.size(), true);
-  for (const Work& w : work) {
-    Bits b(space.words(), 0);
-    for (uint32_t c : w.cells) set_bit(b, local[c]);
-    info.push_back(analyze_part(space, std::move(b), ctx, none));
-  }
-  std::vector<uint32_t> owner(all.size());
+  for (const Work& w : work) info.push_back(analyze_part(space, ls.bits(w), ctx, kNoNewPlanes));
+  std::vector<uint32_t> owner(space.cells.size());
   auto neighbours = [&](uint32_t i) {
     std::vector<uint32_t> nb;
     for (uint32_t c : work[i].cells)
@@ -213,7 +226,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     return nb;
   };
   for (uint32_t i = 0; i < work.size(); ++i)
-    for (uint32_t c : work[i].cells) owner[local[c]] = i;
+    for (uint32_t c : work[i].cells) owner[local.at(c)] = i;
   // Candidate merges, evaluated lazily and cached until one of the two parts changes.
   std::map<std::pair<uint32_t, uint32_t>, std::optional<std::pair<double, PartInfo>>> cache;
   auto evaluate = [&](uint32_t a, uint32_t b) -> const std::optional<std::pair<double, PartInfo>>& {
@@ -223,7 +236,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     std::optional<std::pair<double, PartInfo>> r;
     Bits u = info[a].bits;
     for (size_t w = 0; w < u.size(); ++w) u[w] |= info[b].bits[w];
-    PartInfo ui = analyze_part(space, std::move(u), ctx, none);
+    PartInfo ui = analyze_part(space, std::move(u), ctx, kNoNewPlanes);
     const double g = gain(info[a], info[b], ui);
     if (ui.e_sig == 0 && ui.pinch_edges == 0 && g < -1e-9) r.emplace(g, std::move(ui));
     return cache.emplace(key, std::move(r)).first->second;
@@ -247,7 +260,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     PartInfo merged = cache[{a, b}]->second;
     work[a].cells.insert(work[a].cells.end(), work[b].cells.begin(), work[b].cells.end());
     std::sort(work[a].cells.begin(), work[a].cells.end());
-    for (uint32_t c : work[b].cells) owner[local[c]] = a;
+    for (uint32_t c : work[b].cells) owner[local.at(c)] = a;
     work[b].cells.clear();
     alive[b] = false;
     info[a] = std::move(merged);
@@ -265,13 +278,8 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
 void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& work,
                       const AnalysisContext& ctx, double n_max, double delta0, LevelResult& out) {
   const CellComplex& cx = *pre.complex;
-  std::vector<uint32_t> all;
-  for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
-  std::sort(all.begin(), all.end());
-  const CellSpace space = make_space(cx, all);
-  std::unordered_map<uint32_t, uint32_t> local;
-  for (uint32_t i = 0; i < all.size(); ++i) local[all[i]] = i;
-  const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+  const LevelSpace ls(cx, work);
+  const CellSpace& space = ls.space;
   std::unordered_map<uint32_t, uint32_t> owner;
   for (uint32_t i = 0; i < work.size(); ++i)
     for (uint32_t c : work[i].cells) owner[c] = i;
@@ -281,9 +289,7 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
   out.min_convexity = 1;
   out.mean_convexity = 0;
   for (uint32_t i = 0; i < work.size(); ++i) {
-    Bits b(space.words(), 0);
-    for (uint32_t c : work[i].cells) set_bit(b, local[c]);
-    const PartInfo info = analyze_part(space, std::move(b), ctx, none);
+    const PartInfo info = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes);
     PartResult r;
     r.cells = work[i].cells;
     r.component = work[i].component;
@@ -339,8 +345,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
     std::sort(all.begin(), all.end());
     const CellSpace space = make_space(cx, all);
-    const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
-    const PartInfo r = analyze_part(space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), none);
+    const PartInfo r = analyze_part(space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), kNoNewPlanes);
     out.concave_edges = r.e_all;
     n_max = r.e_all + 1;
     delta0 = r.delta;
