@@ -43,8 +43,12 @@ bench: build
 test-sanitize: deps
 	@cmake -S . -B $(BUILD)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMC_SANITIZE=ON -DMC_BUILD_BENCH=OFF >/dev/null
 	@cmake --build $(BUILD)-asan -j $(JOBS)
-	@# no free-memory quarantine: the streaming tests measure peak RSS, which it would inflate
-	@cd $(BUILD)-asan && ASAN_OPTIONS=quarantine_size_mb=0 ctest --output-on-failure -j $(JOBS)
+	@# no free-memory quarantine: the streaming tests measure peak RSS, which it would inflate;
+	@# suppressions only for findings inside oneTBB and libstdc++ (tools/sanitizers/*.supp say why)
+	@cd $(BUILD)-asan && ASAN_OPTIONS=quarantine_size_mb=0 \
+	  UBSAN_OPTIONS=print_stacktrace=1:suppressions=$(CURDIR)/tools/sanitizers/ubsan.supp \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/sanitizers/lsan.supp \
+	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
 # libFuzzer targets (clang, own build dir): each fuzzed FUZZ_SECONDS; see tools/fuzz.sh.
 fuzz: deps
