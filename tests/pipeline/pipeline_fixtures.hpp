@@ -166,6 +166,18 @@ inline ProcessResult run_command(const std::string& cmd) {
 
 inline std::string cli_path() { return std::string(MC_BINARY_DIR) + "/tools/morphcut-city"; }
 
+// ajv-cli as tools/setup-deps.sh installs it (build/node_tools), or empty when it is not there.
+inline std::string ajv_path() {
+  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/build", std::string(MC_BINARY_DIR)}) {
+    const std::string p = base + "/node_tools/node_modules/.bin/ajv";
+    if (fs::exists(p)) return p;
+  }
+  return {};
+}
+
+// The official CityJSON 2.0 schemas in ../shared.
+inline std::string schema_dir() { return std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/schemas/2.0"; }
+
 // CSV rows split into fields (RFC 4180 quoting; CRLF or LF line ends).
 inline std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
   std::vector<std::vector<std::string>> rows(1);

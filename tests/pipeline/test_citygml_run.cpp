@@ -23,15 +23,6 @@ std::map<std::string, std::vector<std::string>> input_buildings(const std::strin
   return out;
 }
 
-std::string ajv_path() {
-  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/build", std::string(MC_BINARY_DIR)}) {
-    const std::string p = base + "/node_tools/node_modules/.bin/ajv";
-    if (fs::exists(p)) return p;
-  }
-  return {};
-}
-std::string schema_dir() { return std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/schemas/2.0"; }
-
 // The project's copy (datasets/citygml) when there is one, else the shared file.
 std::string citygml(const std::string& name) {
   for (const std::string base : {std::string(MC_SOURCE_DIR) + "/datasets/citygml/",

@@ -5,16 +5,6 @@
 namespace mc::test {
 namespace {
 
-std::string ajv_path() {
-  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/build", std::string(MC_BINARY_DIR)}) {
-    const std::string p = base + "/node_tools/node_modules/.bin/ajv";
-    if (fs::exists(p)) return p;
-  }
-  return {};
-}
-
-std::string schema_dir() { return std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/schemas/2.0"; }
-
 TEST(Schema, OutputValidatesAgainstCityJson20) {
   const std::string ajv = ajv_path();
   if (ajv.empty())
