@@ -166,6 +166,24 @@ inline ProcessResult run_command(const std::string& cmd) {
 
 inline std::string cli_path() { return std::string(MC_BINARY_DIR) + "/tools/morphcut-city"; }
 
+// An axis-aligned cube [x0, x0 + size] x [0, size] x [0, size] appended to `vertices` (CityJSON
+// vertex list; T = int for files with a transform): its outward shell of 6 quads indexing them.
+template <class T>
+json append_cube_shell(json& vertices, T x0, T size) {
+  const size_t b = vertices.size();
+  for (int k = 0; k < 8; ++k)
+    vertices.push_back({x0 + size * T((k == 1 || k == 2 || k == 5 || k == 6) ? 1 : 0),
+                        size * T((k == 2 || k == 3 || k == 6 || k == 7) ? 1 : 0), size * T(k >= 4)});
+  json shell = json::array();
+  for (const auto& f : std::vector<std::vector<int>>{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
+    json ring = json::array();
+    for (int k : f) ring.push_back(b + k);
+    shell.push_back(json::array({ring}));
+  }
+  return shell;
+}
+
 // ajv-cli as tools/setup-deps.sh installs it (build/node_tools), or empty when it is not there.
 inline std::string ajv_path() {
   for (const std::string base : {std::string(MC_SOURCE_DIR) + "/build", std::string(MC_BINARY_DIR)}) {

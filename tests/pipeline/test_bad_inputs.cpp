@@ -183,17 +183,7 @@ TEST(BadInputs, HugeBuildingIsSkippedAsTooLarge) {
     faces.push_back(json::array({ring}));
   }
   auto cube = [&](int x0) {
-    const int b = static_cast<int>(v.size());
-    for (int k = 0; k < 8; ++k)
-      v.push_back({x0 + 1000 * ((k == 1 || k == 2 || k == 5 || k == 6) ? 1 : 0),
-                   1000 * ((k == 2 || k == 3 || k == 6 || k == 7) ? 1 : 0), 1000 * (k >= 4)});
-    json shell = json::array();
-    for (const auto& f : std::vector<std::vector<int>>{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                       {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
-      json ring = json::array();
-      for (int k : f) ring.push_back(b + k);
-      shell.push_back(json::array({ring}));
-    }
+    const json shell = mc::test::append_cube_shell(v, x0, 1000);
     return json::array({{{"type", "Solid"}, {"lod", "2.2"}, {"boundaries", json::array({shell})}}});
   };
   json objects = {{"before", {{"type", "Building"}, {"geometry", cube(-5000)}}},

@@ -83,20 +83,7 @@ TEST(FaultTolerance, ABuildingThatThrowsFailsAloneWithItsReason) {
 TEST(FaultTolerance, ABuildingExhaustingItsDeadlineDoesNotDelayTheOthers) {
   mc::test::TempDir dir("fault_deadline");
   json objects = json::object(), v = json::array();
-  auto cube = [&](double x0) {
-    const size_t b = v.size();
-    for (int k = 0; k < 8; ++k)
-      v.push_back({x0 + 10.0 * ((k == 1 || k == 2 || k == 5 || k == 6) ? 1 : 0),
-                   10.0 * ((k == 2 || k == 3 || k == 6 || k == 7) ? 1 : 0), 10.0 * (k >= 4)});
-    json shell = json::array();
-    for (const auto& f : std::vector<std::vector<int>>{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                       {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
-      json ring = json::array();
-      for (int k : f) ring.push_back(b + k);
-      shell.push_back(json::array({ring}));
-    }
-    return shell;
-  };
+  auto cube = [&](double x0) { return mc::test::append_cube_shell(v, x0, 10.0); };
   auto dome = [&](double cx, int nu, int nv) {  // a UV sphere of radius 10 resting on z = 0
     const size_t top = v.size();
     v.push_back({cx, 0.0, 20.0});
