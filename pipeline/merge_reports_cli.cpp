@@ -8,13 +8,12 @@
 
 #include "io/errors.hpp"
 #include "pipeline/merge_reports.hpp"
+#include "pipeline/cli.hpp"
 #include "pipeline/subcommands.hpp"
 
 namespace mc::pipeline {
 
 namespace {
-
-constexpr int kExitUsage = 2;
 
 const char* kFooter = R"(Tiles are given either as report paths (the CSV beside each report, x.morphcut.report.json ->
 x.morphcut.csv, is merged too), or as the tile list given to the array (one input path per line;
@@ -57,12 +56,7 @@ int merge_reports_main(int argc, char** argv) {
   app.add_option("--csv", csv_out, "merged CSV (default: the output with .report.json -> .csv)");
   app.add_flag("--no-csv", no_csv, "do not merge the CSVs");
   app.footer(kFooter);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitUsage;
-  }
+  if (const auto code = parse_or_exit(app, argc, argv)) return *code;
   try {
     if (!tile_list.empty() == !reports.empty()) throw CLI::ValidationError("give either REPORTS or --tiles LIST --dir DIR");
     if (!tile_list.empty() && dir.empty()) throw CLI::ValidationError("--tiles needs --dir");

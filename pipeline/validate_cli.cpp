@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/errors.hpp"
+#include "pipeline/cli.hpp"
 #include "pipeline/subcommands.hpp"
 #include "pipeline/validate.hpp"
 #include "pipeline/validate_report.hpp"
@@ -16,8 +17,6 @@
 namespace mc::pipeline {
 
 namespace {
-
-constexpr int kExitUsage = 2;
 
 const char* kValidateFooter = R"(Checks:
   every CityObject: required members, "parents"/"children" mirrored, the reader's problems
@@ -54,12 +53,7 @@ int validate_main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--quiet,-q", quiet, "print nothing; only the exit code (and --json) tell");
   app.footer(kValidateFooter);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitUsage;
-  }
+  if (const auto code = parse_or_exit(app, argc, argv)) return *code;
 
   try {
     std::unique_ptr<mc::io::AtomicFile> json_file;

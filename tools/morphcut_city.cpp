@@ -10,13 +10,12 @@
 
 #include "config/config.hpp"
 #include "io/errors.hpp"
+#include "pipeline/cli.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/subcommands.hpp"
 
 namespace {
-
-constexpr int kExitUsage = 2;
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -93,12 +92,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
   app.set_version_flag("--version", MC_VERSION);
   app.footer(kFooter);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitUsage;
-  }
+  if (const auto code = mc::pipeline::parse_or_exit(app, argc, argv)) return *code;
 
   try {
     mc::LoadedConfig cfg;
@@ -146,5 +140,5 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "morphcut-city: error: %s\n", e.what());
   }
-  return kExitUsage;
+  return mc::pipeline::kExitUsage;
 }
