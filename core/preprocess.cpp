@@ -98,7 +98,18 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cp.seed = p.seed;
   cp.vote_batch = p.vote_batch;
   const SurfaceIndex index(tris);
-  cp.surface_touches = [&](const BBox& b) { return index.touches(b); };
+  // A cell the surface does not touch is uniformly inside or outside, except across the oracle's
+  // box: beyond it everything is outside, so a cell hanging out of an open bottom (no floor face
+  // to touch) is not uniform and needs the full vote.
+  const BBox& ob = oracle.bbox();
+  const auto straddles_box = [&](const BBox& b) {
+    const bool inside = b.lo.x >= ob.lo.x && b.lo.y >= ob.lo.y && b.lo.z >= ob.lo.z && b.hi.x <= ob.hi.x &&
+                        b.hi.y <= ob.hi.y && b.hi.z <= ob.hi.z;
+    const bool apart = b.hi.x < ob.lo.x || b.hi.y < ob.lo.y || b.hi.z < ob.lo.z || b.lo.x > ob.hi.x ||
+                       b.lo.y > ob.hi.y || b.lo.z > ob.hi.z;
+    return !inside && !apart;
+  };
+  cp.surface_touches = [&](const BBox& b) { return index.touches(b) || straddles_box(b); };
   const CarveResult cr = carve(
       *out.complex, cps,
       [&](const std::vector<Vec3>& pts, uint64_t first, std::vector<uint8_t>& flags) {

@@ -11,6 +11,7 @@
 #include "core/decompose.hpp"
 #include "core/hausdorff.hpp"
 #include "core/soup.hpp"
+#include "off_fixture.hpp"
 
 namespace mc {
 namespace {
@@ -123,6 +124,33 @@ INSTANTIATE_TEST_SUITE_P(Synthetic, Preprocess,
                                            Case{"U", test::u_building}, Case{"courtyard", test::courtyard_building},
                                            Case{"stepped_tower", test::stepped_tower}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// Real open-bottom inputs (walls and roof, no floor) at the paper's resolution: the cell's floor
+// lies at the input's lowest level. A cell reaching out of the open bottom touches no input face;
+// it must still get the full vote, not the few-point vote of cells the surface does not touch
+// (sample8 once kept such a cell, hanging 8 m below the building down to the carving box).
+TEST(Preprocess, OpenBottomCellStopsAtTheInputsLowestLevel) {
+  int checked = 0;
+  for (const auto& s : test::samples()) {
+    if (s.name != "sample8" && s.name != "sample9" && s.name != "sample10") continue;
+    PreprocessParams p;
+    p.cell_size = s.used.at("cell_size");
+    p.dist_thresh = s.used.at("dist_thresh");
+    p.max_distance = s.used.at("max_distance");
+    p.max_angle_deg = s.used.at("max_angle");
+    p.angle_thresh_deg = s.used.at("angle_thresh");
+    p.compute_hausdorff = false;
+    const PolygonMesh in = test::load_off(s.off.string());
+    const Preprocessed pre = preprocess(in, p, Clock::now() + std::chrono::seconds(60));
+    double in_lo = 1e300, cell_lo = 1e300;
+    for (const Vec3& v : in.vertices) in_lo = std::min(in_lo, v.z);
+    for (const Vec3& v : singleton_mesh(pre).vertices) cell_lo = std::min(cell_lo, v.z);
+    EXPECT_GE(cell_lo, in_lo - p.dist_thresh) << s.name;
+    EXPECT_TRUE(pre.closed) << s.name;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3);
+}
 
 TEST(Preprocess, EmptyAndDegenerateInputsThrowClearErrors) {
   PreprocessParams p;
