@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <map>
 #include <unordered_map>
 #include <cmath>
 #include <limits>
@@ -63,6 +64,7 @@ struct InsideOracle::Impl {
   // shares group 0. A point is inside if it is inside any group (union of overlapping shells).
   std::vector<uint32_t> group;
   uint32_t groups = 1;
+  static constexpr uint32_t kIgnored = UINT32_MAX;  // zero-volume closed sheets: no crossing
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
   }
@@ -103,6 +105,113 @@ InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
     throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
 }
 
+namespace {
+
+uint64_t edge_key(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
+
+// Splits one closed connected component whose edges are not all shared by exactly two of its
+// triangles (closed shells glued along edges, as in several Hong Kong inputs) into parity groups:
+// each patch connected over 2-valent edges that is closed on its own is a group, and the rest of
+// the component is one more group if it is closed too. Parity over the glued union would call the
+// overlap of two shells outside; per shell it is inside some shell. Patches of (near) zero volume
+// (doubled sheets) are returned as `ignored`. Returns false (no split) when that does not work out.
+bool split_glued_shells(const TriangleSoup& soup, const std::vector<uint32_t>& tris, std::vector<std::vector<uint32_t>>& groups,
+                        std::vector<uint32_t>& ignored) {
+  std::unordered_map<uint64_t, std::vector<uint32_t>> edges;  // edge -> positions in `tris`
+  for (uint32_t i = 0; i < tris.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const auto& t = soup.triangles[tris[i]];
+      edges[edge_key(t[k], t[(k + 1) % 3])].push_back(i);
+    }
+  bool glued = false;
+  for (const auto& [key, ts] : edges) glued |= ts.size() > 2;
+  if (!glued) return false;
+  // Patches over 2-valent edges, with each triangle's orientation relative to its patch seed.
+  const uint32_t n = static_cast<uint32_t>(tris.size());
+  std::vector<uint32_t> patch(n, UINT32_MAX);
+  std::vector<int8_t> flip(n, 0);
+  auto dir = [&](uint32_t i, uint64_t key) {  // +1 if triangle i runs along the edge low -> high
+    const auto& t = soup.triangles[tris[i]];
+    for (int k = 0; k < 3; ++k)
+      if (edge_key(t[k], t[(k + 1) % 3]) == key) return t[k] < t[(k + 1) % 3] ? 1 : -1;
+    return 0;
+  };
+  std::vector<std::vector<uint32_t>> patches;
+  for (uint32_t seed = 0; seed < n; ++seed) {
+    if (patch[seed] != UINT32_MAX) continue;
+    const uint32_t id = static_cast<uint32_t>(patches.size());
+    patches.emplace_back();
+    std::vector<uint32_t> stack{seed};
+    patch[seed] = id;
+    while (!stack.empty()) {
+      const uint32_t i = stack.back();
+      stack.pop_back();
+      patches[id].push_back(i);
+      const auto& t = soup.triangles[tris[i]];
+      for (int k = 0; k < 3; ++k) {
+        const uint64_t key = edge_key(t[k], t[(k + 1) % 3]);
+        const auto& ts = edges[key];
+        if (ts.size() != 2) continue;
+        const uint32_t j = ts[0] == i ? ts[1] : ts[0];
+        // Consistent neighbours run along their shared edge in opposite directions.
+        const int8_t want = static_cast<int8_t>(dir(i, key) * (flip[i] ? -1 : 1) == dir(j, key) ? 1 : 0);
+        if (patch[j] == UINT32_MAX) {
+          patch[j] = id;
+          flip[j] = want;
+          stack.push_back(j);
+        } else if (flip[j] != want) {
+          return false;  // not orientable: leave the component to plain parity
+        }
+      }
+    }
+  }
+  auto closed = [&](const std::vector<uint32_t>& ids) {
+    std::unordered_map<uint64_t, int> count;
+    for (uint32_t i : ids) {
+      const auto& t = soup.triangles[tris[i]];
+      for (int k = 0; k < 3; ++k) ++count[edge_key(t[k], t[(k + 1) % 3])];
+    }
+    for (const auto& [key, c] : count)
+      if (c % 2) return false;
+    return true;
+  };
+  std::vector<uint32_t> rest;
+  double diag = 0;
+  {
+    BBox b;
+    for (uint32_t t : tris)
+      for (uint32_t v : soup.triangles[t]) b.add(soup.vertices[v]);
+    diag = b.diagonal();
+  }
+  for (const auto& ids : patches) {
+    if (!closed(ids)) {
+      rest.insert(rest.end(), ids.begin(), ids.end());
+      continue;
+    }
+    double vol = 0;  // signed volume with the patch's consistent orientation
+    for (uint32_t i : ids) {
+      const auto& t = soup.triangles[tris[i]];
+      const Vec3 &a = soup.vertices[t[0]], &b = soup.vertices[t[1]], &c = soup.vertices[t[2]];
+      vol += (flip[i] ? -1 : 1) * dot(a, cross(b, c)) / 6;
+    }
+    std::vector<uint32_t> g;
+    for (uint32_t i : ids) g.push_back(tris[i]);
+    if (std::abs(vol) <= 1e-9 * diag * diag * diag)
+      ignored.insert(ignored.end(), g.begin(), g.end());
+    else
+      groups.push_back(std::move(g));
+  }
+  if (!rest.empty()) {
+    if (!closed(rest)) return false;
+    std::vector<uint32_t> g;
+    for (uint32_t i : rest) g.push_back(tris[i]);
+    groups.push_back(std::move(g));
+  }
+  return groups.size() > 1;
+}
+
+}  // namespace
+
 void InsideOracle::assign_groups(const TriangleSoup& soup) {
   const size_t n = soup.triangles.size();
   std::vector<uint32_t> parent(n);
@@ -115,25 +224,36 @@ void InsideOracle::assign_groups(const TriangleSoup& soup) {
   for (uint32_t t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = soup.triangles[t][k], b = soup.triangles[t][(k + 1) % 3];
-      auto& e = edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+      auto& e = edges[edge_key(a, b)];
       if (!e.empty()) parent[find(t)] = find(e.front());
       e.push_back(t);
     }
   std::vector<uint8_t> open(n, 0);
   for (const auto& [key, ts] : edges)
     if (ts.size() % 2) open[find(ts.front())] = 1;
-  std::vector<uint32_t> id(n, UINT32_MAX);
+  std::map<uint32_t, std::vector<uint32_t>> closed_components;  // root -> triangles, ordered
+  for (uint32_t t = 0; t < n; ++t)
+    if (!open[find(t)]) closed_components[find(t)].push_back(t);
   impl_->group.assign(n, 0);
   impl_->groups = 1;
-  for (uint32_t t = 0; t < n; ++t) {
-    const uint32_t r = find(t);
-    if (open[r]) continue;
-    if (id[r] == UINT32_MAX) id[r] = impl_->groups++;
-    impl_->group[t] = id[r];
+  bool split = false;
+  for (const auto& [root, tris] : closed_components) {
+    std::vector<std::vector<uint32_t>> shells;
+    std::vector<uint32_t> ignored;
+    if (split_glued_shells(soup, tris, shells, ignored)) {
+      split = true;
+      for (uint32_t t : ignored) impl_->group[t] = Impl::kIgnored;
+    } else {
+      shells = {tris};
+    }
+    for (const auto& shell : shells) {
+      for (uint32_t t : shell) impl_->group[t] = impl_->groups;
+      ++impl_->groups;
+    }
   }
   // One closed shell (plus open pieces): plain parity over everything, so that doubled or
   // loose faces still merge with the shell's crossings within the merge distance.
-  if (impl_->groups <= 2) {
+  if (impl_->groups <= 2 && !split) {
     impl_->groups = 1;
     std::fill(impl_->group.begin(), impl_->group.end(), 0);
   }
@@ -196,6 +316,7 @@ int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
   bool any_odd = false;
   for (size_t i = 0; i < hits.size();) {
     const uint32_t g = impl_->group[hits[i].second];
+    if (g == Impl::kIgnored) break;  // sorted last
     int count = 1;
     float last = hits[i].first;
     size_t j = i + 1;

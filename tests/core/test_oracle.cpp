@@ -8,6 +8,7 @@
 #include "core/oracle.hpp"
 #include "core/soup.hpp"
 #include "off_fixture.hpp"
+#include "buildings.hpp"
 #include "synthetic_buildings.hpp"
 
 namespace mc {
@@ -54,6 +55,23 @@ TEST(Oracle, FlippedAndDuplicatedFaces) {
   const size_t n = m.faces.size();
   for (size_t f = 0; f < n; f += 2) m.faces.push_back(m.faces[f]);  // coincident duplicates
   EXPECT_EQ(misclassified(m), 0);
+}
+
+// Two closed shells glued along a shared vertical edge and overlapping (a box and a triangular
+// prism through its corner, as in some Hong Kong inputs): parity over the glued union calls the
+// overlap outside; each shell is its own parity group, so the overlap is inside.
+TEST(Oracle, OverlappingShellsGluedAlongAnEdge) {
+  PolygonMesh m;
+  test::add_prism(m, {{0, 0}, {2, 0}, {2, 2}, {0, 2}}, 0, 2);
+  test::add_prism(m, {{2, 2}, {0.5, 3}, {3, 0.5}}, 0, 2);
+  const TriangleSoup soup = triangulate(clean_soup(m, 1e-9, nullptr));
+  const InsideOracle oracle(soup, 7, 1);
+  uint64_t id = 0;
+  EXPECT_TRUE(oracle.inside({1.85, 1.85, 1}, id++));   // in both shells
+  EXPECT_TRUE(oracle.inside({0.5, 0.5, 1}, id++));     // in the box only
+  EXPECT_TRUE(oracle.inside({2.3, 1.4, 1}, id++));     // in the prism only, beside the box
+  EXPECT_FALSE(oracle.inside({1.85, 1.85, 2.5}, id++)); // above both
+  EXPECT_FALSE(oracle.inside({2.8, 2.8, 1}, id++));    // beside the shared edge, outside both
 }
 
 TEST(Oracle, JitteredSoupWithOneRay) {
