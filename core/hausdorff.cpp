@@ -166,6 +166,8 @@ HausdorffResult hausdorff(const TriangleSoup& a, const TriangleSoup& b, double s
   r.b_to_a = ba.max;
   r.symmetric = std::max(ab.max, ba.max);
   r.mean_a_to_b = ab.mean;
+  r.mean_b_to_a = ba.mean;
+  r.mean_symmetric = (ab.mean + ba.mean) / 2;
   return r;
 }
 

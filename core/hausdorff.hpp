@@ -10,6 +10,8 @@ struct HausdorffResult {
   double b_to_a = 0;
   double symmetric = 0;    // max of the two
   double mean_a_to_b = 0;  // area-weighted mean distance from a to b
+  double mean_b_to_a = 0;
+  double mean_symmetric = 0;  // mean of the two one-sided means (mean surface deviation)
 };
 
 // Points are sampled on every triangle (deterministic barycentric lattice with spacing <=

@@ -174,6 +174,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     out.hausdorff_in_to_cell = h.a_to_b;
     out.hausdorff_cell_to_in = h.b_to_a;
     out.mean_distance = h.mean_a_to_b;
+    out.mean_distance_cell_to_in = h.mean_b_to_a;
+    out.mean_distance_symmetric = h.mean_symmetric;
   }
   out.seconds = seconds_since(t0);
   return out;

@@ -42,7 +42,8 @@ struct Preprocessed {
   size_t input_faces = 0, regions = 0, cells = 0, inside_cells = 0, oracle_points = 0;
   size_t dropped_components = 0;
   double dropped_volume = 0;
-  double hausdorff = -1, hausdorff_in_to_cell = -1, hausdorff_cell_to_in = -1, mean_distance = -1;
+  double hausdorff = -1, hausdorff_in_to_cell = -1, hausdorff_cell_to_in = -1, mean_distance = -1,
+         mean_distance_cell_to_in = -1, mean_distance_symmetric = -1;
   bool closed = false, manifold = false;
   bool truncated = false;
   double seconds = 0;

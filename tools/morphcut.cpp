@@ -122,7 +122,7 @@ int hausdorff_main(int argc, char** argv) {
   const mc::TriangleSoup ta = mc::triangulate(a), tb = mc::triangulate(b);
   const mc::HausdorffResult h = mc::hausdorff(ta, tb, 0);
   json r{{"a", argv[2]}, {"b", argv[3]}, {"a_to_b", h.a_to_b}, {"b_to_a", h.b_to_a}, {"symmetric", h.symmetric},
-         {"mean_a_to_b", h.mean_a_to_b}};
+         {"mean_a_to_b", h.mean_a_to_b}, {"mean_b_to_a", h.mean_b_to_a}, {"mean_symmetric", h.mean_symmetric}};
   std::cout << r.dump() << "\n";
   return 0;
 }
@@ -195,6 +195,8 @@ int main(int argc, char** argv) {
                             {"hausdorff_input_to_cell", pre.hausdorff_in_to_cell},
                             {"hausdorff_cell_to_input", pre.hausdorff_cell_to_in},
                             {"mean_distance", pre.mean_distance},
+                            {"mean_distance_cell_to_input", pre.mean_distance_cell_to_in},
+                            {"mean_distance_symmetric", pre.mean_distance_symmetric},
                             {"planes", pre.regions},        {"cells", pre.cells},
                             {"interior_cells", pre.inside_cells}, {"components", pre.components.size()},
                             {"closed", pre.closed},         {"manifold", pre.manifold},

@@ -51,6 +51,10 @@ TEST(Hausdorff, OpenSoupAndAsymmetry) {
   EXPECT_LT(r.a_to_b, 1e-9);          // the square lies on the walled version
   EXPECT_NEAR(r.b_to_a, 1.0, 1e-9);   // the wall's top edge is 1 m above the square
   EXPECT_NEAR(r.symmetric, 1.0, 1e-9);
+  // Means: nothing of the square is off; half of the walled area (the wall) is on average 0.5 m off.
+  EXPECT_LT(r.mean_a_to_b, 1e-9);
+  EXPECT_NEAR(r.mean_b_to_a, 0.25, 0.01);
+  EXPECT_NEAR(r.mean_symmetric, 0.125, 0.005);
 }
 
 TEST(Hausdorff, EmptySides) {
