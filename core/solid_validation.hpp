@@ -68,7 +68,9 @@ struct Common {
 };
 std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell& b);
 // The fallback common_volume uses when the boolean's result is not a 2-manifold: both shells
-// corefined, the faces bounding the common part picked and integrated (divergence theorem).
+// corefined, the faces bounding the common part picked and integrated (divergence theorem). When
+// the picked faces do not close up (near-coplanar contact; detected as a result that depends on
+// the origin) the volume is estimated by sampling a grid of 2·10^5 points instead.
 std::optional<Common> common_volume_by_faces(const TriangleShell& a, const TriangleShell& b);
 
 }  // namespace mc
