@@ -6,6 +6,7 @@
 
 #include "core/carve.hpp"
 #include "core/hausdorff.hpp"
+#include "core/hole_planes.hpp"
 #include "core/oracle.hpp"
 #include "core/segmentation.hpp"
 #include "core/soup.hpp"
@@ -72,6 +73,14 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
     if (out.plane_label[id] < 0) out.plane_label[id] = r.semantic;
     cps.push_back({id, r.bbox});
+  }
+  // Planes of the input's holes (missing faces), after the regions.
+  for (const HolePlane& h : hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z)) {
+    const uint32_t id = out.planes->add(h.plane, PlaneOrigin::Region);
+    if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
+    if (out.plane_label[id] < 0) out.plane_label[id] = mesh.label_index("ClosureSurface");  // a virtual face
+    cps.push_back({id, h.bbox});
+    ++out.hole_planes;
   }
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.

@@ -122,7 +122,8 @@ TEST_P(Preprocess, DefectsKeepTheCellClosedAndClose) {
 INSTANTIATE_TEST_SUITE_P(Synthetic, Preprocess,
                          ::testing::Values(Case{"box", test::box_building}, Case{"L", test::l_building},
                                            Case{"U", test::u_building}, Case{"courtyard", test::courtyard_building},
-                                           Case{"stepped_tower", test::stepped_tower}),
+                                           Case{"stepped_tower", test::stepped_tower}, Case{"T", test::t_building},
+                                           Case{"cross_gable", test::cross_gable_house}, Case{"dormer", test::dormer_house}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 // Real open-bottom inputs (walls and roof, no floor) at the paper's resolution: the cell's floor
