@@ -41,27 +41,6 @@ Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double 
   return near ? Crossing::Hair : Crossing::Yes;
 }
 
-// A cell left with hair-blocked planes only is still cut when at least this share of its volume
-// is mislabelled, by a plane whose hair gap is at most this fraction of δ (fitting noise; the
-// sample configs' δ are 0.05-3 m). Measured: a cross gable with 1 mm jitter or coordinates
-// rounded to 1e-6 is rebuilt exactly (it was 2.8 m off); the paper samples keep 9/16 part counts
-// at or below the paper's and convexity >= 0.99 on 16/16 (cutting without these limits made
-// sample18's parts less convex, 0.976).
-constexpr double kHairCutShare = 0.05, kHairCutGap = 0.01;
-
-// The largest distance from plane q of the vertices of cell c that lie a hair from it (see
-// `crosses`); 0 when there is none.
-double hair_gap(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta) {
-  const Plane& pl = cx.planes()[q.plane];
-  const double hair = 0.1 * delta, on = 1e-9 * (1 + std::abs(pl.d));
-  double gap = 0;
-  for (uint32_t v : cx.cell_vertices(c)) {
-    const double s = std::abs(pl.signed_distance(cx.point(v)));
-    if (s > on && s < hair) gap = std::max(gap, s);
-  }
-  return gap;
-}
-
 uint64_t mix(uint64_t x) {
   x += 0x9e3779b97f4a7c15ULL;
   x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
@@ -184,7 +163,6 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       break;
     }
     const uint32_t c = queue.top().cell;
-    const double score = queue.top().score;
     queue.pop();
     std::vector<uint32_t> remaining = std::move(todo[c]);
     // The largest remaining region plane that really crosses the cell. Planes passed over only
@@ -196,19 +174,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       if (x == Crossing::Yes) break;
       if (x == Crossing::Hair) deferred.push_back(remaining[i]);
     }
-    if (i == remaining.size()) {
-      // Only hair-blocked planes are left. When a large share of the cell is mislabelled, a
-      // wrong label costs more than vertices a hair apart, provided the hair is at the level of
-      // fitting noise (several planes meeting at one input corner, fitted independently): cut by
-      // the first such plane. (A cross gable's wing slope passed 1e-8 .. 1e-3 from the valley's
-      // corner, and the whole wing roof stayed uncut: 68 m³ too much.)
-      if (deferred.empty() || score < kHairCutShare * cx.cell_volume(c)) continue;
-      auto it = std::find_if(deferred.begin(), deferred.end(),
-                             [&](uint32_t q) { return hair_gap(cx, c, planes[q], p.dist) <= kHairCutGap * p.dist; });
-      if (it == deferred.end()) continue;
-      i = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
-      deferred.erase(it);
-    }
+    if (i == remaining.size()) continue;
     const uint32_t plane_index = remaining[i];
     auto split = cx.split(c, planes[plane_index].plane);
     remaining.erase(remaining.begin(), remaining.begin() + static_cast<long>(i) + 1);
