@@ -57,6 +57,8 @@ void validate_pre(const PreprocessParams& p) {
   at_least("preprocess.inconsistency", p.inconsistency, 0);
   at_least("preprocess.oracle_rays", p.oracle_rays, 1);
   at_least("preprocess.vote_batch", p.vote_batch, 0);
+  finite("preprocess.min_gap", p.min_gap);
+  if (!(p.min_gap >= 0)) throw ConfigError("preprocess.min_gap", "must be >= 0");
   one_of("preprocess.up_axis", p.up_axis, {"z", "y", "auto"});
   finite("preprocess.min_component_fraction", p.min_component_fraction);
   if (!(p.min_component_fraction >= 0 && p.min_component_fraction < 1))

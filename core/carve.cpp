@@ -1,3 +1,4 @@
+#include <limits>
 #include "core/carve.hpp"
 
 #include "core/surface.hpp"
@@ -39,6 +40,21 @@ Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double 
   }
   if (!(pos && neg)) return Crossing::No;
   return near ? Crossing::Hair : Crossing::Yes;
+}
+
+constexpr double kHairCutShare = 0.2;
+
+// The smallest distance from plane q of the vertices of cell c that lie a hair from it but not
+// on it (see `crosses`); +inf when there is none.
+double hair_gap(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta) {
+  const Plane& pl = cx.planes()[q.plane];
+  const double hair = 0.1 * delta, on = 1e-9 * (1 + std::abs(pl.d));
+  double gap = std::numeric_limits<double>::infinity();
+  for (uint32_t v : cx.cell_vertices(c)) {
+    const double s = std::abs(pl.signed_distance(cx.point(v)));
+    if (s > on && s < hair) gap = std::min(gap, s);
+  }
+  return gap;
 }
 
 uint64_t mix(uint64_t x) {
@@ -163,6 +179,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       break;
     }
     const uint32_t c = queue.top().cell;
+    const double score = queue.top().score;
     queue.pop();
     std::vector<uint32_t> remaining = std::move(todo[c]);
     // The largest remaining region plane that really crosses the cell. Planes passed over only
@@ -174,7 +191,21 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       if (x == Crossing::Yes) break;
       if (x == Crossing::Hair) deferred.push_back(remaining[i]);
     }
-    if (i == remaining.size()) continue;
+    if (i == remaining.size()) {
+      // Only hair-blocked planes are left, yet the cell is inconsistent (it was queued). The
+      // hair rule guards the output grid; a plane whose hair-close vertices all keep at least
+      // `min_gap` from it cannot make vertices that collapse there, so it still cuts a cell of
+      // which at least kHairCutShare is mislabelled. (A 3D BAG building kept a 7.6 m³ cell, 36%
+      // of it outside, over a 4.5 mm gap at δ = 47 mm.) Measured: 3D BAG tile Hausdorff mean
+      // 0.144 -> 0.135 m, all parts still valid. Cutting every such cell made sample18's parts
+      // less convex (0.976); tiny gaps (fitting noise, < 2 mm) did break tile parts.
+      if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) continue;
+      auto it = std::find_if(deferred.begin(), deferred.end(),
+                             [&](uint32_t q) { return hair_gap(cx, c, planes[q], p.dist) >= p.min_gap; });
+      if (it == deferred.end()) continue;
+      i = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
+      deferred.erase(it);
+    }
     const uint32_t plane_index = remaining[i];
     auto split = cx.split(c, planes[plane_index].plane);
     remaining.erase(remaining.begin(), remaining.begin() + static_cast<long>(i) + 1);

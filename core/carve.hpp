@@ -32,6 +32,7 @@ struct CarveParams {
   double inconsistency = 1e-3;  // times c³
   size_t max_cells = 50000;
   int vote_batch = 9;           // points deciding a cell the surface does not touch (0 = full vote)
+  double min_gap = 0.002;       // see PreprocessParams::min_gap
   // Whether the input surface touches a box (conservative); null = always full votes.
   std::function<bool(const BBox&)> surface_touches;
   uint64_t seed = 1;

@@ -24,6 +24,10 @@ struct PreprocessParams {
   double inside_vote = 0.5;      // a cell is inside if its inside-point ratio exceeds this
   double inconsistency = 1e-3;   // re-queue threshold, relative to the cell volume c^3 unit
   int vote_batch = 9;            // points voting on a cell the input surface does not touch (0 = full vote)
+  // A cell left with only hair-blocked planes (a vertex within δ/10) is still cut by one whose
+  // hair-close vertices all keep at least this distance (model units: 2 x a 1 mm output grid),
+  // when at least 20% of the cell is mislabelled. 0 = never.
+  double min_gap = 0.002;
   int oracle_rays = 5;           // rays per point for the inside/outside majority vote
   uint64_t seed = 1;             // every random choice derives from it (determinism)
   // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).

@@ -106,6 +106,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cp.inconsistency = p.inconsistency;
   cp.seed = p.seed;
   cp.vote_batch = p.vote_batch;
+  cp.min_gap = p.min_gap;
   const SurfaceIndex index(tris);
   // A cell the surface does not touch is uniformly inside or outside, except across the oracle's
   // box: beyond it everything is outside, so a cell hanging out of an open bottom (no floor face
