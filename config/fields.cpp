@@ -19,6 +19,7 @@ std::vector<Field> fields_of(Params& p) {
       {"preprocess", "inconsistency", &a.inconsistency},
       {"preprocess", "vote_batch", &a.vote_batch},
       {"preprocess", "min_gap", &a.min_gap},
+      {"preprocess", "snap_corners", &a.snap_corners},
       {"preprocess", "oracle_rays", &a.oracle_rays},
       {"preprocess", "seed", &a.seed},
       {"preprocess", "up_axis", &a.up_axis},

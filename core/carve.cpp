@@ -24,19 +24,27 @@ enum class Crossing { No, Hair, Yes };
 // Does plane q really cross cell c: a vertex beyond δ on both sides and the region nearby.
 // `No` also holds for every sub-cell of c (the plane can be dropped for them); `Hair` only for
 // this cell (a vertex a hair from the plane, which a later split may remove: keep the plane).
-Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta) {
+// A vertex on the padded carving box: never part of the output (the box lies beyond the input).
+bool on_outer_box(const Vec3& v, const BBox& outer) {
+  return v.x == outer.lo.x || v.x == outer.hi.x || v.y == outer.lo.y || v.y == outer.hi.y || v.z == outer.lo.z ||
+         v.z == outer.hi.z;
+}
+
+Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta, const BBox& outer) {
   const BBox cb = cx.cell_bbox(c);
   if (!boxes_overlap(cb, q.bbox, 3 * delta)) return Crossing::No;
   const Plane& pl = cx.planes()[q.plane];
   // A plane passing within δ/10 of a vertex without going through it would create vertices a
-  // hair apart (they collapse when the output is quantised): not offered to this cell.
+  // hair apart (they collapse when the output is quantised): not offered to this cell. Vertices
+  // on the padded box do not count: they never reach the output (and a plane of the building
+  // may well pass near the box's corner lines by the box's own round numbers).
   const double hair = 0.1 * delta, on = 1e-9 * (1 + std::abs(pl.d));
   bool pos = false, neg = false, near = false;
   for (uint32_t v : cx.cell_vertices(c)) {
     const double s = pl.signed_distance(cx.point(v));
     pos |= s > delta;
     neg |= s < -delta;
-    near |= std::abs(s) > on && std::abs(s) < hair;
+    near |= std::abs(s) > on && std::abs(s) < hair && !on_outer_box(cx.point(v), outer);
   }
   if (!(pos && neg)) return Crossing::No;
   return near ? Crossing::Hair : Crossing::Yes;
@@ -46,13 +54,13 @@ constexpr double kHairCutShare = 0.2;
 
 // The smallest distance from plane q of the vertices of cell c that lie a hair from it but not
 // on it (see `crosses`); +inf when there is none.
-double hair_gap(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta) {
+double hair_gap(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta, const BBox& outer) {
   const Plane& pl = cx.planes()[q.plane];
   const double hair = 0.1 * delta, on = 1e-9 * (1 + std::abs(pl.d));
   double gap = std::numeric_limits<double>::infinity();
   for (uint32_t v : cx.cell_vertices(c)) {
     const double s = std::abs(pl.signed_distance(cx.point(v)));
-    if (s > on && s < hair) gap = std::min(gap, s);
+    if (s > on && s < hair && !on_outer_box(cx.point(v), outer)) gap = std::min(gap, s);
   }
   return gap;
 }
@@ -129,6 +137,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   CarveResult res;
   const double unit = p.cell_size * p.cell_size * p.cell_size;
   const double box_volume = cx.cell_volume(cx.root_cell());
+  const BBox outer = cx.cell_bbox(cx.root_cell());
   std::vector<uint8_t> inside_label(cx.num_cells() + 1024, 0);
   std::vector<uint8_t> flags;
 
@@ -187,7 +196,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     size_t i = 0;
     std::vector<uint32_t> deferred;
     for (; i < remaining.size(); ++i) {
-      const Crossing x = crosses(cx, c, planes[remaining[i]], p.dist);
+      const Crossing x = crosses(cx, c, planes[remaining[i]], p.dist, outer);
       if (x == Crossing::Yes) break;
       if (x == Crossing::Hair) deferred.push_back(remaining[i]);
     }
@@ -201,7 +210,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       // less convex (0.976); tiny gaps (fitting noise, < 2 mm) did break tile parts.
       if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) continue;
       auto it = std::find_if(deferred.begin(), deferred.end(),
-                             [&](uint32_t q) { return hair_gap(cx, c, planes[q], p.dist) >= p.min_gap; });
+                             [&](uint32_t q) { return hair_gap(cx, c, planes[q], p.dist, outer) >= p.min_gap; });
       if (it == deferred.end()) continue;
       i = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
       deferred.erase(it);
@@ -218,7 +227,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     for (uint32_t child : {split->neg, split->pos}) {
       std::vector<uint32_t> kept;
       for (uint32_t q : remaining)
-        if (crosses(cx, child, planes[q], p.dist) != Crossing::No) kept.push_back(q);
+        if (crosses(cx, child, planes[q], p.dist, outer) != Crossing::No) kept.push_back(q);
       enqueue(child, vote(child), std::move(kept));
     }
   }

@@ -4,6 +4,7 @@
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -38,6 +39,7 @@ struct CellComplex::Exact {
     std::vector<uint32_t> facets;
   };
   std::vector<K::Plane_3> planes;
+  std::vector<uint8_t> built;  // per plane: 0 not yet, 1 in progress, 2 done
   std::vector<K::Point_3> points;
   std::unordered_map<uint64_t, EdgeInfo> edges;
 };
@@ -85,10 +87,31 @@ CellComplex::~CellComplex() = default;
 
 void CellComplex::ensure_planes() {
   auto& ep = exact_->planes;
-  while (ep.size() < planes_.size()) {
-    const Plane& p = planes_[static_cast<uint32_t>(ep.size())];
-    ep.emplace_back(p.n.x, p.n.y, p.n.z, p.d);
-  }
+  auto& built = exact_->built;
+  const size_t first = ep.size();
+  if (first == planes_.size()) return;
+  ep.resize(planes_.size());
+  built.resize(planes_.size(), 0);
+  // An anchored plane goes exactly through the exact point of its three anchor planes (which
+  // may come later in the registry); 1 = being built, to refuse a cyclic anchor.
+  std::function<void(uint32_t)> build = [&](uint32_t id) {
+    if (built[id] == 2) return;
+    if (id < first) return;
+    if (built[id] == 1) throw std::logic_error("cell complex: cyclic plane anchor");
+    built[id] = 1;
+    const Plane& p = planes_[id];
+    if (const auto* a = planes_.anchor(id)) {
+      for (uint32_t q : *a) build(q);
+      auto res = CGAL::intersection(ep[(*a)[0]], ep[(*a)[1]], ep[(*a)[2]]);
+      const K::Point_3* pt = res ? boost::get<K::Point_3>(&*res) : nullptr;
+      if (!pt) throw std::logic_error("cell complex: anchor planes do not meet in a point");
+      ep[id] = K::Plane_3(*pt, K::Vector_3(p.n.x, p.n.y, p.n.z));
+    } else {
+      ep[id] = K::Plane_3(p.n.x, p.n.y, p.n.z, p.d);
+    }
+    built[id] = 2;
+  };
+  for (uint32_t id = static_cast<uint32_t>(first); id < planes_.size(); ++id) build(id);
 }
 
 uint32_t CellComplex::add_vertex_from_planes(uint32_t p1, uint32_t p2, uint32_t p3) {

@@ -28,6 +28,9 @@ struct PreprocessParams {
   // hair-close vertices all keep at least this distance (model units: 2 x a 1 mm output grid),
   // when at least 20% of the cell is mislabelled. 0 = never.
   double min_gap = 0.002;
+  // Fitted planes sharing an input corner (4+ planes) are made to meet there exactly
+  // (core/corner_snap.hpp). false = the paper's behaviour (planes as fitted).
+  bool snap_corners = true;
   int oracle_rays = 5;           // rays per point for the inside/outside majority vote
   uint64_t seed = 1;             // every random choice derives from it (determinism)
   // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).

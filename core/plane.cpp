@@ -63,6 +63,21 @@ uint32_t PlaneRegistry::add(Plane p, PlaneOrigin origin) {
   return static_cast<uint32_t>(planes_.size() - 1);
 }
 
+void PlaneRegistry::set_anchor(uint32_t id, const std::array<uint32_t, 3>& via, double d) {
+  if (id >= planes_.size()) throw std::out_of_range("set_anchor: no such plane");
+  for (uint32_t v : via)
+    if (v >= planes_.size() || v == id) throw std::invalid_argument("set_anchor: bad anchor plane");
+  if (anchors_.size() < planes_.size()) anchors_.resize(planes_.size(), {UINT32_MAX, UINT32_MAX, UINT32_MAX});
+  anchors_[id] = via;
+  planes_[id].d = d == 0 ? 0.0 : d;
+}
+
+size_t PlaneRegistry::num_anchored() const {
+  size_t n = 0;
+  for (const auto& a : anchors_) n += a[0] != UINT32_MAX;
+  return n;
+}
+
 uint32_t PlaneRegistry::add_snapped(Plane p, const std::vector<uint32_t>& pool, double angle_rad,
                                     double dist, const BBox& box, PlaneOrigin origin) {
   if (!canonicalize(p)) throw std::invalid_argument("degenerate plane normal");

@@ -54,9 +54,21 @@ class PlaneRegistry {
   size_t size() const { return planes_.size(); }
   const std::vector<Plane>& planes() const { return planes_; }
 
+  // Anchors plane `id` to the common point of three other planes: exact consumers (the cell
+  // complex) build it through that exact point with its normal, so that four fitted planes
+  // meeting at one corner really meet there (core/corner_snap.hpp). `d` is the double offset
+  // through the double point, for measurements. Must happen before a complex uses the plane.
+  void set_anchor(uint32_t id, const std::array<uint32_t, 3>& via, double d);
+  // The anchor of `id`, or nullptr when it is a plain (n, d) plane.
+  const std::array<uint32_t, 3>* anchor(uint32_t id) const {
+    return id < anchors_.size() && anchors_[id][0] != UINT32_MAX ? &anchors_[id] : nullptr;
+  }
+  size_t num_anchored() const;
+
  private:
   std::vector<Plane> planes_;
   std::vector<PlaneOrigin> origins_;
+  std::vector<std::array<uint32_t, 3>> anchors_;  // UINT32_MAX = none
 };
 
 }  // namespace mc

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/carve.hpp"
+#include "core/corner_snap.hpp"
 #include "core/hausdorff.hpp"
 #include "core/hole_planes.hpp"
 #include "core/oracle.hpp"
@@ -68,12 +69,17 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cbox.hi += Vec3{pad, pad, pad};
   out.complex = std::make_unique<CellComplex>(*out.planes, cbox);
   std::vector<CarvePlane> cps;
+  std::vector<uint32_t> region_plane;
   for (const auto& r : regions) {
     const uint32_t id = out.planes->add(r.plane, PlaneOrigin::Region);
+    region_plane.push_back(id);
     if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
     if (out.plane_label[id] < 0) out.plane_label[id] = r.semantic;
     cps.push_back({id, r.bbox});
   }
+  // Fitted planes that share an input corner meet there exactly (else the carving may refuse
+  // one of them at a hair-close vertex); the tolerance is that hair.
+  if (p.snap_corners) out.anchored_planes = snap_corners(mesh, regions, region_plane, *out.planes, 0.1 * out.dist);
   // Planes of the input's holes (missing faces), after the regions.
   for (const HolePlane& h : hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z)) {
     const uint32_t id = out.planes->add(h.plane, PlaneOrigin::Region);

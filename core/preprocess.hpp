@@ -41,6 +41,7 @@ struct Preprocessed {
   // Statistics.
   size_t input_faces = 0, regions = 0, cells = 0, inside_cells = 0, oracle_points = 0;
   size_t hole_planes = 0;  // planes of planar holes of the input (core/hole_planes.hpp)
+  size_t anchored_planes = 0;  // planes snapped to a shared corner (core/corner_snap.hpp)
   size_t dropped_components = 0;
   double dropped_volume = 0;
   double hausdorff = -1, hausdorff_in_to_cell = -1, hausdorff_cell_to_in = -1, mean_distance = -1,
