@@ -125,7 +125,9 @@ std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, u
     cum += t.vol;
     const long upto = std::lround(count * cum / total);
     for (; done < upto; ++done, ++k) {
-      const double s = std::fmod(o1 + a1 * k, 1.0), u = std::fmod(o2 + a2 * k, 1.0), w = std::fmod(o3 + a3 * k, 1.0);
+      // frac(x) = x - floor(x): exact for x >= 0, the same bits as fmod(x, 1) and far cheaper.
+      const double x1 = o1 + a1 * k, x2 = o2 + a2 * k, x3 = o3 + a3 * k;
+      const double s = x1 - std::floor(x1), u = x2 - std::floor(x2), w = x3 - std::floor(x3);
       pts.push_back(fold_to_tet(s, u, w, t.a, t.b, t.c, t.d));
     }
   }

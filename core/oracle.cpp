@@ -345,6 +345,10 @@ bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
     const double z = 0.5 + 0.5 * unit_double(r2);
     const double r = std::sqrt(std::max(0.0, 1 - z * z));
     votes += count_crossings(p, Vec3{r * std::cos(phi), r * std::sin(phi), z}) & 1;
+    // Stop once the majority is decided: the same answer as all rays, since ray k's direction
+    // depends only on (seed, point, k). Most points are unambiguous: 3 rays instead of 5.
+    if (2 * votes > rays_) return true;
+    if (2 * (votes + rays_ - (k + 1)) <= rays_) return false;
   }
   return 2 * votes > rays_;
 }
