@@ -179,10 +179,26 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
 // (convex + reflex within δ) becomes a ≈180° line that is then dropped; two shallow reflex
 // edges around a chamfer add up into one stronger line.
 void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
+  std::vector<size_t> cand;
   for (int guard = 0; guard < 1000; ++guard) {
     bool merged = false;
+    // Only lines sharing a plane can merge: index them by plane (ascending positions, so the
+    // first mergeable pair in (i, j) order is the same as a scan of all pairs would find).
+    std::unordered_map<uint32_t, std::vector<size_t>> by_plane;
+    for (size_t k = 0; k < lines.size(); ++k) {
+      by_plane[lines[k].line.p1].push_back(k);
+      by_plane[lines[k].line.p2].push_back(k);
+    }
     for (size_t i = 0; i < lines.size() && !merged; ++i) {
-      for (size_t j = i + 1; j < lines.size() && !merged; ++j) {
+      cand.clear();
+      for (uint32_t pl : {lines[i].line.p1, lines[i].line.p2}) {
+        const auto& v = by_plane[pl];
+        cand.insert(cand.end(), std::upper_bound(v.begin(), v.end(), i), v.end());
+      }
+      std::sort(cand.begin(), cand.end());
+      cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+      for (size_t ci = 0; ci < cand.size() && !merged; ++ci) {
+        const size_t j = cand[ci];
         ConcaveLine& L1 = lines[i].line;
         ConcaveLine& L2 = lines[j].line;
         if (!lines[i].reflex && !lines[j].reflex) continue;

@@ -113,7 +113,8 @@ TEST(FaultTolerance, ABuildingExhaustingItsDeadlineDoesNotDelayTheOthers) {
   std::ofstream(input) << json({{"type", "CityJSON"}, {"version", "1.0"}, {"CityObjects", objects}, {"vertices", v}}).dump();
 
   Params p = mc::test::default_config().params;
-  p.timeout_s = 2;
+  // The dome (32k faces) needs about 1.5 s to preprocess on this machine class, the cubes ~10 ms.
+  p.timeout_s = 0.5;
   p.threads = 2;
   const Outcome r = run(input, dir, p);
   EXPECT_EQ(r.result.exit_code(), 1);
@@ -125,7 +126,7 @@ TEST(FaultTolerance, ABuildingExhaustingItsDeadlineDoesNotDelayTheOthers) {
   ASSERT_TRUE(d["status"] == "partial" || d["status"] == "failed") << d;
   EXPECT_NE(d["reason"].get<std::string>().find("deadline"), std::string::npos) << d["reason"];
   EXPECT_EQ(r.output["CityObjects"]["b_dome"]["attributes"]["morphcut_status"], d["status"]);
-  EXPECT_LT(d["timings"]["job"].get<double>(), 2 + 10.0);  // the deadline, plus writing what it has
+  EXPECT_LT(d["timings"]["job"].get<double>(), 0.5 + 10.0);  // the deadline, plus writing what it has
 }
 
 }  // namespace
