@@ -46,10 +46,17 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   out.cell_size = p.cell_size > 0 ? p.cell_size : p.f_d * diag0;
   out.dist = p.dist_thresh > 0 ? p.dist_thresh : out.cell_size / 4;
   out.angle_rad = p.angle_thresh_deg * M_PI / 180.0;
+  // The oracle decides parity per closed shell, and which shells are closed is topology: it
+  // sees the input welded only where positions coincide (1e-9 of the diagonal). The weld of
+  // the other stages (δ/10, at most 1e-6 of the diagonal) can join float-neighbour vertices of
+  // stacked storeys into shells that no longer split into closed patches (sample18 lost two
+  // storeys to plain parity).
+  PolygonMesh oracle_mesh = clean_soup(mesh, diag0 * 1e-9, nullptr);
   mesh = clean_soup(mesh, std::min(out.dist * 0.1, diag0 * 1e-6), &out.problems);
   if (mesh.faces.empty()) throw std::runtime_error("degenerate geometry: no valid face after cleaning");
   out.offset = bbox_center(mesh);
   translate(mesh, -out.offset);
+  translate(oracle_mesh, -out.offset);
   for (const Vec3& v : mesh.vertices) out.box.add(v);
   out.labels = mesh.semantic_labels;
 
@@ -101,7 +108,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // Oracle and carving.
   const TriangleSoup tris = triangulate(mesh);
   if (tris.triangles.empty()) throw std::runtime_error("degenerate geometry: nothing to triangulate");
-  InsideOracle oracle(tris, p.oracle_rays, p.seed);
+  const TriangleSoup oracle_tris = triangulate(oracle_mesh);
+  InsideOracle oracle(oracle_tris.triangles.empty() ? tris : oracle_tris, p.oracle_rays, p.seed);
   oracle.set_merge_distance(out.dist);
   CarveParams cp;
   cp.cell_size = out.cell_size;
