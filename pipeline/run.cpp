@@ -26,6 +26,7 @@
 #include "io/feature_source.hpp"
 #include "io/temp_registry.hpp"
 #include "pipeline/cache.hpp"
+#include "pipeline/crash_guard.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/progress.hpp"
@@ -186,6 +187,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   std::optional<InterruptWatchdog> watchdog;
   if (opt.handle_signals) watchdog.emplace(opt.interrupt_grace_s);
 
+  const CrashGuard crash_guard(opt.crash_log);
   std::exception_ptr read_error, write_error;
   std::atomic<bool> stop{false};
   size_t next_sequence = 0, flagged = 0;
@@ -216,8 +218,13 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   tbb::flow::limiter_node<Msg> limiter(g, static_cast<size_t>(res.in_flight));
   tbb::flow::function_node<Msg, Msg> job(g, tbb::flow::unlimited, [&](Msg w) -> Msg {
     if (stop.load() || interrupt_signal()) return w;  // nothing will be written: skip the work
+    if (std::string why = crash_guard.skip_reason(w->feature.id); !why.empty()) {
+      w->outcome = failed_building(std::move(w->feature), why);
+      return w;
+    }
     // An exception escaping a job would cancel the whole graph: the building fails instead.
     try {
+      const CrashGuard::Scope running(w->feature.id);
       if (opt.before_job) opt.before_job(w->feature);
     } catch (const std::exception& e) {
       w->outcome = failed_building(std::move(w->feature), e.what());
@@ -226,6 +233,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       w->outcome = failed_building(std::move(w->feature), "unknown exception");
       return w;
     }
+    const CrashGuard::Scope running(w->feature.id);
     w->outcome = cache ? cache->run(std::move(w->feature), header, params, rc)
                        : run_building(std::move(w->feature), header, params, rc);
     return w;

@@ -33,6 +33,9 @@ struct RunOptions {
   // grace period, then the process exits with 128 + signal.
   bool handle_signals = false;
   double interrupt_grace_s = 3;
+  // Crash log (pipeline/crash_guard.hpp): buildings that crashed an earlier run are written
+  // through as failed, and a crash in this run is recorded there. Empty = no guard.
+  std::string crash_log;
   // Test hook: called on each feature before its job (e.g. to break one building on purpose).
   std::function<void(mc::io::Feature&)> before_job;
 };

@@ -43,6 +43,9 @@ const char* kFooter = R"(Outputs (written to the current directory unless given)
   SUMMARY  <stem>.morphcut.csv: one RFC 4180 row per building for planners (parts per level,
            height, footprint, volume, convexities, part-graph statistics, centroid, lon/lat)
   All outputs are atomic: they appear complete or not at all.
+  CRASHES  OUTPUT.crashed: a building that crashes the process (a signal such as SIGSEGV or
+           SIGABRT) is recorded there; the next run writes it through as failed with that
+           reason, so the city completes. Delete the file to try those buildings again.
 
 Building status (attribute morphcut_status, with morphcut_reason when not ok):
   ok       every level decomposed
@@ -112,6 +115,7 @@ int main(int argc, char** argv) {
     opt.cache_dir = cache_dir;
     opt.progress = !quiet && mc::pipeline::stderr_is_tty();
     opt.handle_signals = true;
+    opt.crash_log = opt.output + ".crashed";
 
     const mc::pipeline::RunResult r = mc::pipeline::run_city(opt, cfg.params, cfg.run);
     if (r.interrupted) {

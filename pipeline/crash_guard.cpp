@@ -1,0 +1,127 @@
+#include "pipeline/crash_guard.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+
+#include "io/temp_registry.hpp"
+
+namespace mc::pipeline {
+
+namespace {
+
+constexpr int kSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
+constexpr size_t kMaxId = 1024, kMaxPath = 4096;
+
+// Read by the handler: plain storage only (no allocation, no locks).
+char g_log[kMaxPath];  // empty = guard off
+struct sigaction g_previous[std::size(kSignals)];
+thread_local char t_id[kMaxId];  // the building this thread works on, or ""
+
+void write_all(int fd, const char* s, size_t n) {
+  while (n > 0) {
+    const ssize_t k = ::write(fd, s, n);
+    if (k <= 0) return;
+    s += k;
+    n -= static_cast<size_t>(k);
+  }
+}
+
+void on_crash(int sig, siginfo_t* info, void* context) {
+  mc::io::unlink_registered_temp_files();
+  if (g_log[0] && t_id[0]) {
+    const int fd = ::open(g_log, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      char line[kMaxId + 16];
+      size_t n = std::strlen(t_id);
+      std::memcpy(line, t_id, n);
+      line[n++] = '\t';
+      char digits[8];
+      int d = 0;
+      for (int s = sig; s > 0 && d < 8; s /= 10) digits[d++] = static_cast<char>('0' + s % 10);
+      while (d > 0) line[n++] = digits[--d];
+      line[n++] = '\n';
+      write_all(fd, line, n);
+      ::close(fd);
+    }
+    t_id[0] = '\0';  // a second fault on this thread records nothing more
+  }
+  size_t i = 0;
+  while (i < std::size(kSignals) && kSignals[i] != sig) ++i;
+  const struct sigaction& prev = g_previous[i < std::size(kSignals) ? i : 0];
+  if ((prev.sa_flags & SA_SIGINFO) && prev.sa_sigaction) {
+    prev.sa_sigaction(sig, info, context);
+    return;
+  }
+  if (!(prev.sa_flags & SA_SIGINFO) && prev.sa_handler != SIG_DFL && prev.sa_handler != SIG_IGN) {
+    prev.sa_handler(sig);
+    return;
+  }
+  // Default action: die by the same signal (the parent sees the usual status).
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  sigaction(sig, &dfl, nullptr);
+  raise(sig);
+}
+
+void install_once() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (size_t i = 0; i < std::size(kSignals); ++i) {
+      sigaction(kSignals[i], nullptr, &g_previous[i]);
+      struct sigaction sa {};
+      sa.sa_sigaction = on_crash;
+      sa.sa_flags = SA_SIGINFO;
+      sigemptyset(&sa.sa_mask);
+      sigaction(kSignals[i], &sa, nullptr);
+    }
+  });
+}
+
+// The form an id is recorded in: at most kMaxId - 1 bytes, no line breaks or tabs.
+std::string recorded_form(const std::string& id) {
+  std::string r = id.substr(0, kMaxId - 1);
+  for (char& c : r)
+    if (c == '\n' || c == '\t' || c == '\r') c = ' ';
+  return r;
+}
+
+}  // namespace
+
+CrashGuard::CrashGuard(const std::string& log_path) : path_(log_path) {
+  if (path_.empty() || path_.size() >= kMaxPath) return;
+  std::ifstream in(path_);
+  for (std::string line; std::getline(in, line);) {
+    const size_t tab = line.find('\t');
+    const std::string id = line.substr(0, tab);
+    if (!id.empty()) crashed_.insert(id);
+  }
+  std::memcpy(g_log, path_.c_str(), path_.size() + 1);
+  install_once();
+}
+
+CrashGuard::~CrashGuard() {
+  if (!path_.empty()) g_log[0] = '\0';
+}
+
+std::string CrashGuard::skip_reason(const std::string& id) const {
+  if (!crashed_.count(recorded_form(id))) return {};
+  return "this building crashed an earlier run (recorded in " + path_ +
+         "); written through unchanged. Delete that file to try it again";
+}
+
+CrashGuard::Scope::Scope(const std::string& id) {
+  const std::string r = recorded_form(id);
+  std::memcpy(t_id, r.data(), r.size());
+  t_id[r.size()] = '\0';
+}
+
+CrashGuard::Scope::~Scope() { t_id[0] = '\0'; }
+
+}  // namespace mc::pipeline
