@@ -30,7 +30,12 @@ struct sigaction g_previous[2];
 void on_signal(int sig, siginfo_t* info, void* context) {
   unlink_registered_temp_files();
   const int i = sig == SIGINT ? 0 : 1;
-  const struct sigaction& prev = g_previous[i];
+  chain_signal(g_previous[i], sig, info, context);
+}
+
+}  // namespace
+
+void chain_signal(const struct sigaction& prev, int sig, siginfo_t* info, void* context) noexcept {
   if (prev.sa_flags & SA_SIGINFO) {
     if (prev.sa_sigaction) prev.sa_sigaction(sig, info, context);
     return;
@@ -47,8 +52,6 @@ void on_signal(int sig, siginfo_t* info, void* context) {
   sigaction(sig, &dfl, nullptr);
   raise(sig);
 }
-
-}  // namespace
 
 int register_temp_file(const char* path) noexcept {
   const std::size_t n = std::strlen(path);

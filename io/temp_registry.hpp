@@ -3,6 +3,8 @@
 // holding C strings, each guarded by a lock-free atomic state; the handler only does atomic
 // compare-exchange, unlink(2), sigaction(2) and raise(3).
 #pragma once
+#include <signal.h>
+
 #include <cstddef>
 
 namespace mc::io {
@@ -30,5 +32,10 @@ void unlink_registered_temp_files() noexcept;
 // chained handler runs, so an AtomicFile open at the signal can no longer commit() (it throws):
 // a graceful stop must not expect to finish outputs that were being written.
 void install_temp_cleanup_signal_handlers();
+
+// From a signal handler: hands `sig` on to the handler that was installed before (`previous`),
+// or, if that was the default action, restores it and re-raises the signal so the process ends
+// as it would have. Async-signal-safe.
+void chain_signal(const struct sigaction& previous, int sig, siginfo_t* info, void* context) noexcept;
 
 }  // namespace mc::io

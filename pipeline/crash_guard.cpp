@@ -52,22 +52,8 @@ void on_crash(int sig, siginfo_t* info, void* context) {
     t_id[0] = '\0';  // a second fault on this thread records nothing more
   }
   size_t i = 0;
-  while (i < std::size(kSignals) && kSignals[i] != sig) ++i;
-  const struct sigaction& prev = g_previous[i < std::size(kSignals) ? i : 0];
-  if ((prev.sa_flags & SA_SIGINFO) && prev.sa_sigaction) {
-    prev.sa_sigaction(sig, info, context);
-    return;
-  }
-  if (!(prev.sa_flags & SA_SIGINFO) && prev.sa_handler != SIG_DFL && prev.sa_handler != SIG_IGN) {
-    prev.sa_handler(sig);
-    return;
-  }
-  // Default action: die by the same signal (the parent sees the usual status).
-  struct sigaction dfl {};
-  dfl.sa_handler = SIG_DFL;
-  sigemptyset(&dfl.sa_mask);
-  sigaction(sig, &dfl, nullptr);
-  raise(sig);
+  while (i + 1 < std::size(kSignals) && kSignals[i] != sig) ++i;
+  mc::io::chain_signal(g_previous[i], sig, info, context);
 }
 
 void install_once() {
