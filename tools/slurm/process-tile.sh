@@ -14,6 +14,8 @@
 # A run that exits 0 (all ok) or 1 (some buildings partial/failed, outputs complete) is final;
 # any other exit (read/write error, crash, signal) is retried up to --retries times with
 # exponential backoff (--backoff, 2x each time). The script exits with morphcut-city's last code.
+# A building that crashes morphcut-city is recorded in <output>.crashed (pipeline/crash_guard),
+# so the retry writes it through as failed and completes the tile instead of crashing again.
 set -euo pipefail
 
 usage() { echo "usage: process-tile.sh TILE OUTDIR [--config F] [--cache DIR] [--threads N] [--timeout S] [--retries N] [--backoff S] [--force]" >&2; exit 2; }
