@@ -1,11 +1,11 @@
-#include <limits>
 #include "core/carve.hpp"
 
 #include "core/surface.hpp"
 
 #include <algorithm>
-#include <map>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <queue>
 #include <tuple>
 #include <unordered_set>
@@ -14,37 +14,39 @@ namespace mc {
 
 namespace {
 
-bool boxes_overlap(const BBox& a, const BBox& b, double grow) {
-  return a.lo.x <= b.hi.x + grow && b.lo.x <= a.hi.x + grow && a.lo.y <= b.hi.y + grow &&
-         b.lo.y <= a.hi.y + grow && a.lo.z <= b.hi.z + grow && b.lo.z <= a.hi.z + grow;
-}
-
 enum class Crossing { No, Hair, Yes };
 
-// Does plane q really cross cell c: a vertex beyond δ on both sides and the region nearby.
-// `No` also holds for every sub-cell of c (the plane can be dropped for them); `Hair` only for
-// this cell (a vertex a hair from the plane, which a later split may remove: keep the plane).
 // A vertex on the padded carving box: never part of the output (the box lies beyond the input).
 bool on_outer_box(const Vec3& v, const BBox& outer) {
   return v.x == outer.lo.x || v.x == outer.hi.x || v.y == outer.lo.y || v.y == outer.hi.y || v.z == outer.lo.z ||
          v.z == outer.hi.z;
 }
 
+// A plane passing within δ/10 of a vertex without going through it would create vertices a hair
+// apart (they collapse when the output is quantised). Vertices on the padded box do not count:
+// they never reach the output (and a plane of the building may well pass near the box's corner
+// lines by the box's own round numbers).
+struct HairTest {
+  double on, hair;
+  const BBox& outer;
+  HairTest(const Plane& pl, double delta, const BBox& box) : on(1e-9 * (1 + std::abs(pl.d))), hair(0.1 * delta), outer(box) {}
+  // `dist`: the vertex's unsigned distance from the plane.
+  bool operator()(double dist, const Vec3& v) const { return dist > on && dist < hair && !on_outer_box(v, outer); }
+};
+
+// Does plane q really cross cell c: a vertex beyond δ on both sides and the region nearby.
+// `No` also holds for every sub-cell of c (the plane can be dropped for them); `Hair` only for
+// this cell (a vertex a hair from the plane, which a later split may remove: keep the plane).
 Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta, const BBox& outer) {
-  const BBox cb = cx.cell_bbox(c);
-  if (!boxes_overlap(cb, q.bbox, 3 * delta)) return Crossing::No;
+  if (!cx.cell_bbox(c).overlaps(q.bbox, 3 * delta)) return Crossing::No;
   const Plane& pl = cx.planes()[q.plane];
-  // A plane passing within δ/10 of a vertex without going through it would create vertices a
-  // hair apart (they collapse when the output is quantised): not offered to this cell. Vertices
-  // on the padded box do not count: they never reach the output (and a plane of the building
-  // may well pass near the box's corner lines by the box's own round numbers).
-  const double hair = 0.1 * delta, on = 1e-9 * (1 + std::abs(pl.d));
+  const HairTest hair(pl, delta, outer);
   bool pos = false, neg = false, near = false;
   for (uint32_t v : cx.cell_vertices(c)) {
     const double s = pl.signed_distance(cx.point(v));
     pos |= s > delta;
     neg |= s < -delta;
-    near |= std::abs(s) > on && std::abs(s) < hair && !on_outer_box(cx.point(v), outer);
+    near |= hair(std::abs(s), cx.point(v));
   }
   if (!(pos && neg)) return Crossing::No;
   return near ? Crossing::Hair : Crossing::Yes;
@@ -52,15 +54,15 @@ Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double 
 
 constexpr double kHairCutShare = 0.2;
 
-// The smallest distance from plane q of the vertices of cell c that lie a hair from it but not
-// on it (see `crosses`); +inf when there is none.
+// The smallest distance from plane q of the vertices of cell c that lie a hair from it (see
+// `HairTest`); +inf when there is none.
 double hair_gap(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta, const BBox& outer) {
   const Plane& pl = cx.planes()[q.plane];
-  const double hair = 0.1 * delta, on = 1e-9 * (1 + std::abs(pl.d));
+  const HairTest hair(pl, delta, outer);
   double gap = std::numeric_limits<double>::infinity();
   for (uint32_t v : cx.cell_vertices(c)) {
     const double s = std::abs(pl.signed_distance(cx.point(v)));
-    if (s > on && s < hair && !on_outer_box(cx.point(v), outer)) gap = std::min(gap, s);
+    if (hair(s, cx.point(v))) gap = std::min(gap, s);
   }
   return gap;
 }

@@ -95,8 +95,7 @@ void CellComplex::ensure_planes() {
   // An anchored plane goes exactly through the exact point of its three anchor planes (which
   // may come later in the registry); 1 = being built, to refuse a cyclic anchor.
   std::function<void(uint32_t)> build = [&](uint32_t id) {
-    if (built[id] == 2) return;
-    if (id < first) return;
+    if (built[id] == 2) return;  // including every plane built by an earlier call
     if (built[id] == 1) throw std::logic_error("cell complex: cyclic plane anchor");
     built[id] = 1;
     const Plane& p = planes_[id];

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <functional>
 #include <map>
-#include <set>
 #include <tuple>
 
 namespace mc {
@@ -82,17 +81,20 @@ size_t snap_corners(const PolygonMesh& mesh, const std::vector<PlaneRegion>& reg
     }
   }
   if (!anchored) return 0;
-  // Offsets of anchored planes again, now that planes they are anchored to may have moved.
-  std::function<void(uint32_t, int)> refresh = [&](uint32_t id, int depth) {
+  // Offsets of anchored planes again, now that planes they are anchored to may have moved
+  // (anchors form no cycle, see above: the recursion ends).
+  std::vector<uint8_t> fresh(registry.size(), 0);
+  std::function<void(uint32_t)> refresh = [&](uint32_t id) {
     const auto* a = registry.anchor(id);
-    if (!a || depth > 64) return;
-    for (uint32_t b : *a) refresh(b, depth + 1);
-    Vec3 x;
+    if (!a || fresh[id]) return;
+    fresh[id] = 1;
     const auto via = *a;
+    for (uint32_t b : via) refresh(b);
+    Vec3 x;
     if (meet(registry[via[0]], registry[via[1]], registry[via[2]], 0.0, x))
       registry.set_anchor(id, via, -dot(registry[id].n, x));
   };
-  for (uint32_t id = 0; id < registry.size(); ++id) refresh(id, 0);
+  for (uint32_t id = 0; id < registry.size(); ++id) refresh(id);
   return anchored;
 }
 

@@ -28,6 +28,14 @@ struct BBox {
   Vec3 center() const { return (lo + hi) * 0.5; }
   double diagonal() const { return valid() ? norm(hi - lo) : 0.0; }
   std::array<Vec3, 8> corners() const;
+  // Closed boxes: they share a point once each is grown by `grow`.
+  bool overlaps(const BBox& o, double grow = 0) const {
+    return lo.x <= o.hi.x + grow && o.lo.x <= hi.x + grow && lo.y <= o.hi.y + grow && o.lo.y <= hi.y + grow &&
+           lo.z <= o.hi.z + grow && o.lo.z <= hi.z + grow;
+  }
+  bool contains(const BBox& o) const {
+    return o.lo.x >= lo.x && o.lo.y >= lo.y && o.lo.z >= lo.z && o.hi.x <= hi.x && o.hi.y <= hi.y && o.hi.z <= hi.z;
+  }
 };
 
 // "Same plane", box variant (algorithm.md §2.5): normals within `angle_rad` (unoriented) and

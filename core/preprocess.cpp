@@ -76,34 +76,28 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cbox.hi += Vec3{pad, pad, pad};
   out.complex = std::make_unique<CellComplex>(*out.planes, cbox);
   std::vector<CarvePlane> cps;
-  std::vector<uint32_t> region_plane;
-  for (const auto& r : regions) {
-    const uint32_t id = out.planes->add(r.plane, PlaneOrigin::Region);
-    region_plane.push_back(id);
+  // Registers a carving plane; a plane's label is the first one given to it.
+  auto add_carve_plane = [&](const Plane& pl, const BBox& where, int32_t label) {
+    const uint32_t id = out.planes->add(pl, PlaneOrigin::Region);
     if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
-    if (out.plane_label[id] < 0) out.plane_label[id] = r.semantic;
-    cps.push_back({id, r.bbox});
-  }
+    if (out.plane_label[id] < 0) out.plane_label[id] = label;
+    cps.push_back({id, where});
+    return id;
+  };
+  std::vector<uint32_t> region_plane;
+  for (const auto& r : regions) region_plane.push_back(add_carve_plane(r.plane, r.bbox, r.semantic));
   // Fitted planes that share an input corner meet there exactly (else the carving may refuse
   // one of them at a hair-close vertex); the tolerance is that hair.
   if (p.snap_corners) out.anchored_planes = snap_corners(mesh, regions, region_plane, *out.planes, 0.1 * out.dist);
-  // Planes of the input's holes (missing faces), after the regions.
+  // Planes of the input's holes (missing faces), after the regions; a virtual face.
   for (const HolePlane& h : hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z)) {
-    const uint32_t id = out.planes->add(h.plane, PlaneOrigin::Region);
-    if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
-    if (out.plane_label[id] < 0) out.plane_label[id] = mesh.label_index("ClosureSurface");  // a virtual face
-    cps.push_back({id, h.bbox});
+    add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"));
     ++out.hole_planes;
   }
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
-  {
-    const uint32_t id = out.planes->add({{0, 0, 1}, -out.box.lo.z}, PlaneOrigin::Region);
-    if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
-    if (out.plane_label[id] < 0) out.plane_label[id] = mesh.label_index("GroundSurface");
-    out.labels = mesh.semantic_labels;
-    cps.push_back({id, out.box});
-  }
+  add_carve_plane({{0, 0, 1}, -out.box.lo.z}, out.box, mesh.label_index("GroundSurface"));
+  out.labels = mesh.semantic_labels;
 
   // Oracle and carving.
   const TriangleSoup tris = triangulate(mesh);
@@ -126,13 +120,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // box: beyond it everything is outside, so a cell hanging out of an open bottom (no floor face
   // to touch) is not uniform and needs the full vote.
   const BBox& ob = oracle.bbox();
-  const auto straddles_box = [&](const BBox& b) {
-    const bool inside = b.lo.x >= ob.lo.x && b.lo.y >= ob.lo.y && b.lo.z >= ob.lo.z && b.hi.x <= ob.hi.x &&
-                        b.hi.y <= ob.hi.y && b.hi.z <= ob.hi.z;
-    const bool apart = b.hi.x < ob.lo.x || b.hi.y < ob.lo.y || b.hi.z < ob.lo.z || b.lo.x > ob.hi.x ||
-                       b.lo.y > ob.hi.y || b.lo.z > ob.hi.z;
-    return !inside && !apart;
-  };
+  const auto straddles_box = [&](const BBox& b) { return ob.overlaps(b) && !ob.contains(b); };
   cp.surface_touches = [&](const BBox& b) { return index.touches(b) || straddles_box(b); };
   const CarveResult cr = carve(
       *out.complex, cps,

@@ -222,9 +222,9 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       w->outcome = failed_building(std::move(w->feature), why);
       return w;
     }
+    const CrashGuard::Scope running(w->feature.id);  // a crash from here on names this building
     // An exception escaping a job would cancel the whole graph: the building fails instead.
     try {
-      const CrashGuard::Scope running(w->feature.id);
       if (opt.before_job) opt.before_job(w->feature);
     } catch (const std::exception& e) {
       w->outcome = failed_building(std::move(w->feature), e.what());
@@ -233,7 +233,6 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       w->outcome = failed_building(std::move(w->feature), "unknown exception");
       return w;
     }
-    const CrashGuard::Scope running(w->feature.id);
     w->outcome = cache ? cache->run(std::move(w->feature), header, params, rc)
                        : run_building(std::move(w->feature), header, params, rc);
     return w;

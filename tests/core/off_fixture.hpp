@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/params.hpp"
 #include "core/polygon_mesh.hpp"
 
 namespace mc::test {
@@ -125,6 +126,20 @@ inline std::vector<Sample> samples() {
   }
   std::sort(out.begin(), out.end(), [](const Sample& a, const Sample& b) { return a.name < b.name; });
   return out;
+}
+
+// The preprocessing parameters of the paper's own run of a sample (NAME.off_param.txt, also
+// present for the samples that ship no config); no Hausdorff measurement.
+inline PreprocessParams paper_params(const Sample& s) {
+  PreprocessParams p;
+  p.cell_size = s.used.at("cell_size");
+  p.dist_thresh = s.used.at("dist_thresh");
+  p.max_distance = s.used.at("max_distance");
+  p.max_angle_deg = s.used.at("max_angle");
+  p.angle_thresh_deg = s.used.at("angle_thresh");
+  p.min_region = static_cast<int>(s.used.at("min_region"));
+  p.compute_hausdorff = false;
+  return p;
 }
 
 }  // namespace mc::test

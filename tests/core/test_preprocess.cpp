@@ -135,13 +135,7 @@ TEST(Preprocess, OpenBottomCellStopsAtTheInputsLowestLevel) {
   int checked = 0;
   for (const auto& s : test::samples()) {
     if (s.name != "sample8" && s.name != "sample9" && s.name != "sample10") continue;
-    PreprocessParams p;
-    p.cell_size = s.used.at("cell_size");
-    p.dist_thresh = s.used.at("dist_thresh");
-    p.max_distance = s.used.at("max_distance");
-    p.max_angle_deg = s.used.at("max_angle");
-    p.angle_thresh_deg = s.used.at("angle_thresh");
-    p.compute_hausdorff = false;
+    const PreprocessParams p = test::paper_params(s);
     const PolygonMesh in = test::load_off(s.off.string());
     const Preprocessed pre = preprocess(in, p, Clock::now() + std::chrono::seconds(60));
     double in_lo = 1e300, cell_lo = 1e300;
@@ -162,13 +156,7 @@ TEST(Preprocess, StackedStoreyShellsOfAFloatInputAllStayInside) {
   int checked = 0;
   for (const auto& s : test::samples()) {
     if (s.name != "sample18") continue;
-    PreprocessParams p;
-    p.cell_size = s.used.at("cell_size");
-    p.dist_thresh = s.used.at("dist_thresh");
-    p.max_distance = s.used.at("max_distance");
-    p.max_angle_deg = s.used.at("max_angle");
-    p.angle_thresh_deg = s.used.at("angle_thresh");
-    p.compute_hausdorff = false;
+    const PreprocessParams p = test::paper_params(s);
     const Preprocessed pre = preprocess(test::load_off(s.off.string()), p, Clock::now() + std::chrono::seconds(60));
     double volume = 0;
     for (const auto& c : pre.components) volume += c.volume;

@@ -175,18 +175,8 @@ TEST(Segmentation, Deterministic) {
   }
 }
 
-// The parameters of the paper's run (NAME.off_param.txt; also present for the samples that
-// ship no config).
-SegmentationParams sample_params(const test::Sample& s) {
-  SegmentationParams p;
-  p.max_distance = s.used.at("max_distance");
-  p.max_angle_deg = s.used.at("max_angle");
-  p.angle_thresh_deg = s.used.at("angle_thresh");
-  p.dist_thresh = s.used.at("dist_thresh");
-  p.min_area = s.used.at("cell_size") * s.used.at("cell_size");
-  p.min_region = static_cast<int>(s.used.at("min_region"));
-  return p;
-}
+// The parameters of the paper's run.
+SegmentationParams sample_params(const test::Sample& s) { return segmentation_params(test::paper_params(s)); }
 
 TEST(Segmentation, EverySample) {
   const auto all = test::samples();
