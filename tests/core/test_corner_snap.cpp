@@ -8,7 +8,9 @@
 
 #include "buildings.hpp"
 #include "core/complex.hpp"
+#include "core/preprocess.hpp"
 #include "core/soup.hpp"
+#include "off_fixture.hpp"
 
 namespace mc {
 namespace {
@@ -111,6 +113,38 @@ TEST(CornerSnap, RegistryRejectsBadAnchorsAndTheComplexRejectsCycles) {
   b.add({-1, -1, -1});
   b.add({1, 1, 1});
   EXPECT_THROW(CellComplex(reg, b), std::logic_error);
+}
+
+// Real inputs whose fitted planes share corners: a 3D BAG building (automatic resolution) and
+// sample22 (its paper parameters). Preprocessing anchors planes there, the cell stays a closed
+// 2-manifold, and in the carved complex every anchored plane passes exactly through each vertex
+// its three anchor planes meet in.
+TEST(CornerSnap, RealInputsGetExactCornersAndClosedCells) {
+  std::vector<std::pair<std::string, PreprocessParams>> inputs;
+  PreprocessParams automatic;
+  automatic.compute_hausdorff = false;
+  inputs.push_back({std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000004560.off", automatic});
+  for (const auto& s : test::samples())
+    if (s.name == "sample22") inputs.push_back({s.off.string(), test::paper_params(s)});
+  ASSERT_EQ(inputs.size(), 2u);
+  for (const auto& [path, p] : inputs) {
+    SCOPED_TRACE(path);
+    const Preprocessed pre = preprocess(test::load_off(path), p, Clock::now() + std::chrono::seconds(60));
+    EXPECT_GT(pre.anchored_planes, 0u);
+    EXPECT_TRUE(pre.closed && pre.manifold);
+    const CellComplex& cx = *pre.complex;
+    size_t corners = 0;
+    for (uint32_t id = 0; id < pre.planes->size(); ++id) {
+      const auto* a = pre.planes->anchor(id);
+      if (!a) continue;
+      for (uint32_t v = 0; v < cx.num_vertices(); ++v) {
+        if (cx.vertex_side(v, (*a)[0]) || cx.vertex_side(v, (*a)[1]) || cx.vertex_side(v, (*a)[2])) continue;
+        EXPECT_EQ(cx.vertex_side(v, id), 0) << "anchored plane " << id;
+        ++corners;
+      }
+    }
+    EXPECT_GT(corners, 0u);
+  }
 }
 
 }  // namespace
