@@ -40,6 +40,8 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "significance_max", &d.significance_max},
       {"decompose", "split_chains", &d.split_chains},
       {"decompose", "merge_tiny_parts", &d.merge_tiny_parts},
+      {"decompose", "revisit_boundaries", &d.revisit_boundaries},
+      {"decompose", "revisit_candidates", &d.revisit_candidates},
       {"decompose", "merge_convex_parts", &d.merge_convex_parts},
       {"", "timeout_s", &p.timeout_s},
       {"", "max_faces", &p.max_faces},

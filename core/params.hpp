@@ -60,6 +60,11 @@ struct DecomposeParams {
   int64_t node_budget = 20000;   // expanded nodes per search
   bool significance_max = true;  // D(e) = max over samples (paper) instead of mean (RC)
   bool merge_tiny_parts = true;
+  // After each level but the first, re-search the pieces along the boundary of two neighbouring
+  // previous parts as one part (a coarse level's boundary can force extra pieces at a finer one),
+  // with this many candidate planes (top by weight). Better parts for more time (decompose.cpp).
+  bool revisit_boundaries = false;
+  int revisit_candidates = 4;
   bool merge_convex_parts = true;  // after each level, merge neighbours while the level's cost drops
   // Concave-line grouping: true splits a plane pair's edges into connected chains (algorithm.md
   // §4.2 REC); false groups every edge of a plane pair into one line, as the research code does.

@@ -5,10 +5,15 @@
 #include <map>
 #include <tuple>
 
+#include <tbb/global_control.h>
+
 #include "buildings.hpp"
+#include "off_fixture.hpp"
 
 namespace mc {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct Outcome {
   Preprocessed pre;
@@ -142,6 +147,46 @@ TEST(Decompose, CutFacesAreClosureSurfaces) {
   for (const auto& f : m.faces)
     if (f.semantic >= 0 && m.semantic_labels[f.semantic] == "ClosureSurface") ++closure;
   EXPECT_EQ(closure, 1);
+}
+
+
+// Revisiting previous-level boundaries (decompose.revisit_boundaries) on a real input: sample11, an
+// NYC crop at automatic resolution. Without it, each rooftop unit's first cut (upper box | lower
+// L-shape) is final and the L needs two more pieces; searching the pieces along that boundary
+// together finds two convex parts per unit, as the paper's result has (13 parts at 1e-4).
+TEST(Decompose, RevisitingBoundariesOnARealInputGivesFewerPartsAtLowerCost) {
+  const fs::path off = test::samples_dir() / "sample11" / "nyc_mn07_crop1.off";
+  if (!fs::exists(off)) GTEST_SKIP() << "shared samples not found at " << off;
+  const PolygonMesh mesh = test::load_off(off.string());
+  PreprocessParams pp;  // automatic resolution and up axis, as the sample ships no config
+  pp.compute_hausdorff = false;
+  auto run_with = [&](bool revisit) {
+    const auto deadline = Clock::now() + std::chrono::seconds(120);
+    Outcome r{preprocess(mesh, pp, deadline), {}};
+    DecomposeParams dp;
+    dp.revisit_boundaries = revisit;
+    r.dec = decompose(r.pre, dp, deadline);
+    return r;
+  };
+  const Outcome plain = run_with(false);
+  const Outcome revisited = run_with(true);
+  ASSERT_EQ(revisited.dec.levels.size(), 4u);
+  const LevelResult& a = plain.dec.levels.back();
+  const LevelResult& b = revisited.dec.levels.back();
+  EXPECT_FALSE(revisited.dec.partial);
+  EXPECT_LT(b.parts.size(), a.parts.size());
+  EXPECT_LE(b.parts.size(), 13u);  // the paper's count
+  EXPECT_LT(b.cost, a.cost);
+  EXPECT_GE(b.convexity, 0.99);
+  double volume = 0;
+  for (const auto& c : revisited.pre.components) volume += c.volume;
+  expect_valid_levels(revisited, volume);
+  // Same parts with one thread (the revisiting searches run in parallel).
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const Outcome serial = run_with(true);
+  ASSERT_EQ(serial.dec.levels.back().parts.size(), b.parts.size());
+  for (size_t i = 0; i < b.parts.size(); ++i)
+    EXPECT_DOUBLE_EQ(serial.dec.levels.back().parts[i].volume, b.parts[i].volume);
 }
 
 }  // namespace
