@@ -293,7 +293,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
 // Cost: the searches themselves are cheap, but refining each union by its candidates leaves the
 // complex finer for everything after it (rejected unions too; cells cannot be merged back):
 // on the paper samples 12% more time (geometric-mean speed-up 12.4x -> 10.9x) for fewer parts on
-// 5 of 16 and a lower cost on 7; on the 3D BAG tile 28% more CPU for 1.4% fewer finest parts.
+// 5 of 16 and a lower cost on 8; on the 3D BAG tile 28% more CPU for 1.4% fewer finest parts.
 // Hence off by default.
 void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<Work> prev, std::vector<Work>& work,
                         const AnalysisContext& ctx, double n_max, double delta0, Clock::time_point deadline,
