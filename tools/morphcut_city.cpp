@@ -30,7 +30,15 @@ std::string stem_of(const std::string& input) {
   return name;
 }
 
-const char* kFooter = R"(Outputs (written to the current directory unless given):
+// The output path without its extension and a trailing ".morphcut" (x.morphcut.city.json -> x).
+std::string output_stem(const std::string& output) {
+  const std::filesystem::path p(output);
+  std::string name = stem_of(output);
+  if (ends_with(name, ".morphcut") && name.size() > 9) name.resize(name.size() - 9);
+  return (p.parent_path() / name).string();
+}
+
+const char* kFooter = R"(Outputs (written to the current directory, REPORT and SUMMARY beside OUTPUT when -o is given):
   OUTPUT   <stem>.morphcut.city.json (<stem>.morphcut.city.jsonl for CityJSONSeq input):
            the input unchanged (CityGML input: its buildings converted to CityJSON 2.0, see the
            README) plus, per building and output LoD level, convex BuildingParts
@@ -104,11 +112,13 @@ int main(int argc, char** argv) {
     if (timeout >= 0) cfg.params.timeout_s = timeout;
     if (!lod.empty()) cfg.run.lod = lod;
 
-    const std::string stem = stem_of(input);
     const bool sequence = input == "-" || ends_with(input, ".jsonl");
     mc::pipeline::RunOptions opt;
     opt.input = input;
-    opt.output = !output.empty() ? output : stem + (sequence ? ".morphcut.city.jsonl" : ".morphcut.city.json");
+    opt.output = !output.empty() ? output : stem_of(input) + (sequence ? ".morphcut.city.jsonl" : ".morphcut.city.json");
+    // The report and the summary go beside the output (`-o out/5910.city.json` gives
+    // out/5910.morphcut.report.json), so a run with -o writes nothing into the current directory.
+    const std::string stem = !output.empty() ? output_stem(output) : stem_of(input);
     opt.report = no_report ? "" : (!report.empty() ? report : stem + ".morphcut.report.json");
     opt.summary = no_summary ? "" : (!summary.empty() ? summary : stem + ".morphcut.csv");
     opt.config_file = config_path;

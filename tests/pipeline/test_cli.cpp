@@ -73,6 +73,16 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
   EXPECT_EQ(q.output, "");
   EXPECT_TRUE(fs::exists(dir / "q.city.jsonl"));
   expect_valid_output(dir / "q.city.jsonl");
+  // With -o, the report and the summary go beside the output, not into the current directory.
+  fs::create_directories(dir.path / "cwd");
+  fs::create_directories(dir.path / "out");
+  const ProcessResult o = run_command("cd " + (dir.path / "cwd").string() + " && " + cli_path() + " " + input +
+                                      " --config ../quick.yaml -q -o ../out/tile.morphcut.city.jsonl");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_TRUE(fs::exists(dir.path / "out" / "tile.morphcut.city.jsonl"));
+  EXPECT_TRUE(fs::exists(dir.path / "out" / "tile.morphcut.report.json"));
+  EXPECT_TRUE(fs::exists(dir.path / "out" / "tile.morphcut.csv"));
+  EXPECT_TRUE(fs::is_empty(dir.path / "cwd"));
 }
 
 TEST(Cli, StdinIsReadAsCityJsonSeq) {
