@@ -287,14 +287,13 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
 // this level along their common boundary (three or more, connected) are searched again as one
 // part with the `revisit_candidates` heaviest candidate planes; the result replaces them when it
 // has no more parts, no more significant concave lines, and lowers the level's cost (§6.3 with
-// the whole-building normalisers, as in merge_convex_neighbours). Greedy by decrease over
-// disjoint piece sets, ties by pair order; the searches run in parallel and every choice depends
-// only on their results, so the outcome is the same for any thread count.
-// Cost: the searches themselves are cheap, but refining each union by its candidates leaves the
-// complex finer for everything after it (rejected unions too; cells cannot be merged back):
-// on the paper samples 12% more time (geometric-mean speed-up 12.4x -> 10.9x) for fewer parts on
-// 5 of 16 and a lower cost on 8; on the 3D BAG tile 28% more CPU for 1.4% fewer finest parts.
-// Hence off by default.
+// the whole-building normalisers, as in merge_convex_neighbours). Each union is searched right
+// after its preparation; then the results are taken greedily by decrease over disjoint piece
+// sets, ties by pair order, so the outcome does not depend on the thread count.
+// Cost: preparing each union (refining its cells by its candidates) and its search, about 12-18%
+// more time on the paper samples (geometric-mean speed-up 12.4x -> 10.9x) for fewer parts on 5 of
+// 16 and a lower cost on 8; on the 3D BAG tile 28% more CPU for 1.4% fewer finest parts (3-piece
+// unions are most of the work and one in eight is improved). Hence off by default.
 void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<Work> prev, std::vector<Work>& work,
                         const AnalysisContext& ctx, double n_max, double delta0, Clock::time_point deadline,
                         LevelResult& level) {
@@ -409,18 +408,18 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
       cd.old_e += info.e_all;
       cd.old_sig += info.e_sig;
     }
-    if (Clock::now() > deadline) return;
+    if (Clock::now() > deadline) break;
     cd.pr = prepare(pre, u, rctx);
     if (!cd.pr.search) continue;
     cd.pr.input.deadline = deadline;
+    cd.pr.input.space = &cd.pr.space;
+    // Searched at once: a later union's refinement may split these cells, and their facets then
+    // face the children (a search on them would see wrong orientations). Its parts stay valid as
+    // regions (read back through the current leaves).
+    cd.sr = search(cd.pr.input, cd.pr.root);
+    cd.pr.input.positive.clear();
     cands.push_back(std::move(cd));
   }
-  if (cands.empty()) {
-    for (Work& w : work) w.cells = current_leaves(cx, w.cells);
-    return;
-  }
-  for (Candidate& cd : cands) cd.pr.input.space = &cd.pr.space;
-  tbb::parallel_for(size_t(0), cands.size(), [&](size_t i) { cands[i].sr = search(cands[i].pr.input, cands[i].pr.root); });
   std::vector<std::pair<double, size_t>> gains;
   for (size_t i = 0; i < cands.size(); ++i) {
     const Candidate& cd = cands[i];
