@@ -290,9 +290,9 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
 // the whole-building normalisers, as in merge_convex_neighbours). Each union is searched right
 // after its preparation; then the results are taken greedily by decrease over disjoint piece
 // sets, ties by pair order, so the outcome does not depend on the thread count.
-// Cost: preparing each union (refining its cells by its candidates) and its search, about 12-18%
-// more time on the paper samples (geometric-mean speed-up 12.4x -> 10.9x) for fewer parts on 5 of
-// 16 and a lower cost on 8; on the 3D BAG tile 28% more CPU for 1.4% fewer finest parts (3-piece
+// Cost: preparing each union (refining its cells by its candidates) and its search: 11% more
+// time on the paper samples (geometric-mean speed-up 14.8x -> 13.1x) for fewer parts on 5 of 16
+// and a lower cost on 8; on the 3D BAG tile 29% more CPU for 1.3% fewer finest parts (3-piece
 // unions are most of the work and one in eight is improved). Hence off by default.
 void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<Work> prev, std::vector<Work>& work,
                         const AnalysisContext& ctx, double n_max, double delta0, Clock::time_point deadline,
