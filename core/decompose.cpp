@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <unordered_map>
 
@@ -29,6 +30,31 @@ struct Work {
   std::vector<uint32_t> cells;  // live cells
   int component = 0;
 };
+
+// The owners other than `self` of the cells across the facets of `cells`, ascending; `owner_of`
+// maps a cell to its owner, or to CellComplex::kNone for a cell outside every part.
+template <class OwnerOf>
+std::vector<uint32_t> neighbour_owners(const CellComplex& cx, const std::vector<uint32_t>& cells, uint32_t self,
+                                       const OwnerOf& owner_of) {
+  std::vector<uint32_t> nb;
+  for (uint32_t c : cells)
+    for (uint32_t f : cx.cell(c).facets) {
+      const uint32_t o = cx.other_side(f, c);
+      const uint32_t w = o == CellComplex::kNone ? CellComplex::kNone : owner_of(o);
+      if (w != CellComplex::kNone && w != self) nb.push_back(w);
+    }
+  std::sort(nb.begin(), nb.end());
+  nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  return nb;
+}
+
+// Owner lookup in a cell -> owner map.
+auto lookup_in(const std::unordered_map<uint32_t, uint32_t>& m) {
+  return [&m](uint32_t c) {
+    auto it = m.find(c);
+    return it == m.end() ? CellComplex::kNone : it->second;
+  };
+}
 
 // A part searched at this level: its refined space and search inputs.
 struct Prepared {
@@ -218,17 +244,10 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
   for (const Work& w : work) info.push_back(analyze_part(space, ls.bits(w), ctx, kNoNewPlanes));
   std::vector<uint32_t> owner(space.cells.size());
   auto neighbours = [&](uint32_t i) {
-    std::vector<uint32_t> nb;
-    for (uint32_t c : work[i].cells)
-      for (uint32_t f : cx.cell(c).facets) {
-        const uint32_t o = cx.other_side(f, c);
-        if (o == CellComplex::kNone) continue;
-        auto it = local.find(o);
-        if (it != local.end() && owner[it->second] != i) nb.push_back(owner[it->second]);
-      }
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-    return nb;
+    return neighbour_owners(cx, work[i].cells, i, [&](uint32_t c) {
+      auto it = local.find(c);
+      return it == local.end() ? CellComplex::kNone : owner[it->second];
+    });
   };
   for (uint32_t i = 0; i < work.size(); ++i)
     for (uint32_t c : work[i].cells) owner[local.at(c)] = i;
@@ -327,17 +346,8 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
       pieces[h].push_back(w);
     }
   }
-  std::set<std::pair<uint32_t, uint32_t>> pairs;
-  for (uint32_t i = 0; i < prev.size(); ++i)
-    for (uint32_t c : prev[i].cells)
-      for (uint32_t f : cx.cell(c).facets) {
-        const uint32_t o = cx.other_side(f, c);
-        auto it = o == CellComplex::kNone ? prev_of.end() : prev_of.find(o);
-        if (it != prev_of.end() && it->second > i && prev[it->second].component == prev[i].component)
-          pairs.emplace(i, it->second);
-      }
   struct Candidate {
-    uint32_t a, b;  // the previous parts
+    int component = 0;
     std::vector<uint32_t> old_pieces;
     double old_delta = 0, old_e = 0;
     int old_sig = 0;
@@ -352,74 +362,68 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
     for (uint32_t w : pieces[i]) covered += work[w].cells.size();
     clean[i] = covered == prev[i].cells.size();
   }
-  // Pieces sharing a facet.
-  std::vector<std::set<uint32_t>> touches(work.size());
-  for (uint32_t w = 0; w < work.size(); ++w)
-    for (uint32_t c : work[w].cells)
-      for (uint32_t f : cx.cell(c).facets) {
-        const uint32_t o = cx.other_side(f, c);
-        auto it = o == CellComplex::kNone ? work_of.end() : work_of.find(o);
-        if (it != work_of.end() && it->second != w) touches[w].insert(it->second);
-      }
-  for (const auto& [a, b] : pairs) {
-    if (!clean[a] || !clean[b]) continue;
-    // Only the pieces along the boundary of a and b are searched again: that boundary is what a
-    // joint search can move, and the union stays small.
+  // Pieces sharing a facet, and the pieces' share of the level's cost (analysed once each, when
+  // a union first needs it).
+  std::vector<std::vector<uint32_t>> touches(work.size());
+  for (uint32_t w = 0; w < work.size(); ++w) touches[w] = neighbour_owners(cx, work[w].cells, w, lookup_in(work_of));
+  std::vector<std::optional<PartInfo>> piece_info(work.size());
+  auto info_of = [&](uint32_t w) -> const PartInfo& {
+    if (!piece_info[w]) {
+      const CellSpace space = make_space(cx, current_leaves(cx, work[w].cells));
+      piece_info[w] = analyze_part(space, space.all(), ctx, kNoNewPlanes);
+    }
+    return *piece_info[w];
+  };
+  // Only the pieces along the boundary of a and b are searched again: that boundary is what a
+  // joint search can move, and the union stays small. Empty unless three or more, connected.
+  auto border_of = [&](uint32_t a, uint32_t b) {
     std::vector<uint32_t> border;
     for (const auto& [x, y] : {std::make_pair(a, b), std::make_pair(b, a)})
       for (uint32_t w : pieces[x])
-        for (uint32_t t : touches[w])
-          if (home[t] == static_cast<int64_t>(y)) {
-            border.push_back(w);
-            break;
-          }
-    if (border.size() < 3) continue;
-    {  // connected through shared facets
-      std::set<uint32_t> seen{border.front()};
-      std::vector<uint32_t> stack{border.front()};
-      while (!stack.empty()) {
-        const uint32_t w = stack.back();
-        stack.pop_back();
-        for (uint32_t t : touches[w])
-          if (std::find(border.begin(), border.end(), t) != border.end() && seen.insert(t).second) stack.push_back(t);
+        if (std::any_of(touches[w].begin(), touches[w].end(),
+                        [&](uint32_t t) { return home[t] == static_cast<int64_t>(y); }))
+          border.push_back(w);
+    if (border.size() < 3) return std::vector<uint32_t>{};
+    std::set<uint32_t> seen{border.front()};
+    std::vector<uint32_t> stack{border.front()};
+    while (!stack.empty()) {
+      const uint32_t w = stack.back();
+      stack.pop_back();
+      for (uint32_t t : touches[w])
+        if (std::find(border.begin(), border.end(), t) != border.end() && seen.insert(t).second) stack.push_back(t);
+    }
+    return seen.size() == border.size() ? border : std::vector<uint32_t>{};
+  };
+  for (uint32_t a = 0; a < prev.size() && Clock::now() <= deadline; ++a)
+    for (uint32_t b : neighbour_owners(cx, prev[a].cells, a, lookup_in(prev_of))) {
+      if (b < a || prev[b].component != prev[a].component || !clean[a] || !clean[b]) continue;
+      const std::vector<uint32_t> border = border_of(a, b);
+      if (border.empty()) continue;
+      Candidate cd;
+      cd.component = prev[a].component;
+      cd.old_pieces = border;
+      Work u{{}, cd.component};
+      for (uint32_t w : border) {
+        const PartInfo& info = info_of(w);
+        cd.old_delta += info.delta;
+        cd.old_e += info.e_all;
+        cd.old_sig += info.e_sig;
+        // Earlier candidates' refinement may have split cells: work on the current leaves.
+        const std::vector<uint32_t> leaves = current_leaves(cx, work[w].cells);
+        u.cells.insert(u.cells.end(), leaves.begin(), leaves.end());
       }
-      if (seen.size() != border.size()) continue;
+      std::sort(u.cells.begin(), u.cells.end());
+      cd.pr = prepare(pre, u, rctx);
+      if (!cd.pr.search) continue;
+      cd.pr.input.deadline = deadline;
+      cd.pr.input.space = &cd.pr.space;
+      // Searched at once: a later union's refinement may split these cells, and their facets then
+      // face the children (a search on them would see wrong orientations). Its parts stay valid as
+      // regions (read back through the current leaves).
+      cd.sr = search(cd.pr.input, cd.pr.root);
+      cd.pr.input.positive.clear();
+      cands.push_back(std::move(cd));
     }
-    Candidate cd;
-    cd.a = a;
-    cd.b = b;
-    cd.old_pieces = border;
-    // Earlier candidates' refinement may have split cells: work on the current leaves.
-    Work u{{}, prev[a].component};
-    for (uint32_t w : border) {
-      work[w].cells = current_leaves(cx, work[w].cells);
-      u.cells.insert(u.cells.end(), work[w].cells.begin(), work[w].cells.end());
-    }
-    std::sort(u.cells.begin(), u.cells.end());
-    // The pieces' share of the level's cost, before the union's cells are refined.
-    const CellSpace space = make_space(cx, u.cells);
-    std::unordered_map<uint32_t, uint32_t> local;
-    for (uint32_t k = 0; k < space.cells.size(); ++k) local[space.cells[k]] = k;
-    for (uint32_t w : cd.old_pieces) {
-      Bits bits(space.words(), 0);
-      for (uint32_t c : work[w].cells) set_bit(bits, local.at(c));
-      const PartInfo info = analyze_part(space, std::move(bits), ctx, kNoNewPlanes);
-      cd.old_delta += info.delta;
-      cd.old_e += info.e_all;
-      cd.old_sig += info.e_sig;
-    }
-    if (Clock::now() > deadline) break;
-    cd.pr = prepare(pre, u, rctx);
-    if (!cd.pr.search) continue;
-    cd.pr.input.deadline = deadline;
-    cd.pr.input.space = &cd.pr.space;
-    // Searched at once: a later union's refinement may split these cells, and their facets then
-    // face the children (a search on them would see wrong orientations). Its parts stay valid as
-    // regions (read back through the current leaves).
-    cd.sr = search(cd.pr.input, cd.pr.root);
-    cd.pr.input.positive.clear();
-    cands.push_back(std::move(cd));
-  }
   std::vector<std::pair<double, size_t>> gains;
   for (size_t i = 0; i < cands.size(); ++i) {
     const Candidate& cd = cands[i];
@@ -446,7 +450,7 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
     if (std::any_of(cd.old_pieces.begin(), cd.old_pieces.end(), [&](uint32_t w) { return removed[w]; })) continue;
     for (uint32_t w : cd.old_pieces) removed[w] = true;
     for (const PartInfo& part : cd.sr.parts) {
-      Work nw{{}, prev[cd.a].component};
+      Work nw{{}, cd.component};
       for (uint32_t k = 0; k < cd.pr.space.cells.size(); ++k)
         if (test_bit(part.bits, k)) nw.cells.push_back(cd.pr.space.cells[k]);
       added.push_back(std::move(nw));
@@ -484,16 +488,7 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
     r.volume = info.volume;
     r.hull_volume = info.hull_volume;
     r.convexity = info.delta == 0 && !info.nearly_convex ? 1.0 : info.convexity();
-    std::vector<uint32_t> nb;
-    for (uint32_t c : work[i].cells)
-      for (uint32_t f : cx.cell(c).facets) {
-        const uint32_t o = cx.other_side(f, c);
-        auto it = o == CellComplex::kNone ? owner.end() : owner.find(o);
-        if (it != owner.end() && it->second != i) nb.push_back(it->second);
-      }
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-    r.neighbours = std::move(nb);
+    r.neighbours = neighbour_owners(cx, work[i].cells, i, lookup_in(owner));
     sum_delta += info.delta;
     sum_e += info.e_all;
     sum_v += info.volume;
@@ -580,7 +575,8 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       }
       std::vector<Work> prev = std::move(work);
       work = std::move(next);
-      if (p.revisit_boundaries && li > 0) revisit_boundaries(pre, p, std::move(prev), work, ctx, n_max, delta0, deadline, level);
+      if (p.revisit_boundaries && li > 0)
+        revisit_boundaries(pre, p, std::move(prev), work, ctx, n_max, delta0, deadline, level);
       if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
       if (p.merge_convex_parts) merge_convex_neighbours(pre, p, work, ctx, n_max, delta0);
     } else {
