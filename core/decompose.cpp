@@ -378,11 +378,12 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
   // joint search can move, and the union stays small. Empty unless three or more, connected.
   auto border_of = [&](uint32_t a, uint32_t b) {
     std::vector<uint32_t> border;
-    for (const auto& [x, y] : {std::make_pair(a, b), std::make_pair(b, a)})
-      for (uint32_t w : pieces[x])
-        if (std::any_of(touches[w].begin(), touches[w].end(),
-                        [&](uint32_t t) { return home[t] == static_cast<int64_t>(y); }))
+    for (const auto& side : {std::make_pair(a, b), std::make_pair(b, a)}) {
+      const int64_t other = side.second;  // (clang cannot capture a structured binding)
+      for (uint32_t w : pieces[side.first])
+        if (std::any_of(touches[w].begin(), touches[w].end(), [&](uint32_t t) { return home[t] == other; }))
           border.push_back(w);
+    }
     if (border.size() < 3) return std::vector<uint32_t>{};
     std::set<uint32_t> seen{border.front()};
     std::vector<uint32_t> stack{border.front()};
