@@ -21,6 +21,7 @@ std::vector<Field> fields_of(Params& p) {
       {"preprocess", "min_gap", &a.min_gap},
       {"preprocess", "snap_corners", &a.snap_corners},
       {"preprocess", "oracle_rays", &a.oracle_rays},
+      {"preprocess", "fill_enclosed", &a.fill_enclosed},
       {"preprocess", "seed", &a.seed},
       {"preprocess", "up_axis", &a.up_axis},
       {"preprocess", "min_component_fraction", &a.min_component_fraction},

@@ -229,8 +229,10 @@ void InsideOracle::assign_groups(const TriangleSoup& soup) {
       e.push_back(t);
     }
   std::vector<uint8_t> open(n, 0);
-  for (const auto& [key, ts] : edges)
+  for (const auto& [key, ts] : edges) {
     if (ts.size() % 2) open[find(ts.front())] = 1;
+    if (ts.size() > 2) ++nonmanifold_edges_;
+  }
   std::map<uint32_t, std::vector<uint32_t>> closed_components;  // root -> triangles, ordered
   for (uint32_t t = 0; t < n; ++t)
     if (!open[find(t)]) closed_components[find(t)].push_back(t);
@@ -348,9 +350,43 @@ bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
     // Stop once the majority is decided: the same answer as all rays, since ray k's direction
     // depends only on (seed, point, k). Most points are unambiguous: 3 rays instead of 5.
     if (2 * votes > rays_) return true;
-    if (2 * (votes + rays_ - (k + 1)) <= rays_) return false;
+    if (2 * (votes + rays_ - (k + 1)) <= rays_) break;
   }
-  return 2 * votes > rays_;
+  return enclosure_ && enclosed(p, point_id);
+}
+
+bool InsideOracle::enclosed(const Vec3& p, uint64_t point_id) const {
+  if (!impl_->scene) return false;
+  // Elevations from the zenith down to the horizon; the fan is turned per point (seeded) so
+  // that a regular facade grid cannot line up with it everywhere.
+  static constexpr double kElevationDeg[] = {90, 65, 40, 20, 5, 0};
+  constexpr int kAzimuths = 16;
+  const double turn = 2 * M_PI * unit_double(splitmix64(seed_ ^ splitmix64(~point_id))) / kAzimuths;
+  const Vec3 o = p - impl_->origin;
+  for (double elev : kElevationDeg) {
+    const double e = elev * M_PI / 180, z = std::sin(e), r = std::cos(e);
+    const int n = elev >= 90 ? 1 : kAzimuths;
+    for (int k = 0; k < n; ++k) {
+      const double phi = turn + 2 * M_PI * k / kAzimuths;
+      RTCRay ray;
+      ray.org_x = static_cast<float>(o.x);
+      ray.org_y = static_cast<float>(o.y);
+      ray.org_z = static_cast<float>(o.z);
+      ray.dir_x = static_cast<float>(r * std::cos(phi));
+      ray.dir_y = static_cast<float>(r * std::sin(phi));
+      ray.dir_z = static_cast<float>(z);
+      ray.tnear = 0.0f;
+      ray.tfar = std::numeric_limits<float>::infinity();
+      ray.mask = 0xFFFFFFFFu;
+      ray.flags = 0;
+      ray.time = 0;
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      rtcOccluded1(impl_->scene, &ctx, &ray);
+      if (ray.tfar >= 0) return false;  // not occluded: the ray escapes
+    }
+  }
+  return true;
 }
 
 void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id, std::vector<uint8_t>& out) const {

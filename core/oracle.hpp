@@ -36,6 +36,18 @@ class InsideOracle {
   // Hits closer than `t` along a ray count as one crossing. Preprocessing sets it to δ: surfaces
   // within the model tolerance are one surface (duplicate or doubled walls), as in plane merging.
   void set_merge_distance(double t);
+  // Enclosure fallback: a point the parity vote calls outside, but from which no ray of a fixed
+  // fan (16 azimuths x elevations 0°..90°) escapes, is enclosed by the surface and counts as
+  // inside. Parity breaks on interior sheets (storey floors modelled as faces inside a solid,
+  // glued to the walls along non-manifold edges); enclosure does not. Downward rays are left out
+  // so that open-bottom buildings are not penalised. Off by default. Only a soup with interior
+  // sheets needs it, and those are glued to the walls along edges with more than two triangles:
+  // without such edges it stays off (parity is right there, and the extra inside points would
+  // only perturb the carving).
+  void set_enclosure(bool on) { enclosure_ = on && nonmanifold_edges_ > 0; }
+  size_t nonmanifold_edges() const { return nonmanifold_edges_; }
+  // True when no ray of the fan from p escapes (exposed for tests and diagnostics).
+  bool enclosed(const Vec3& p, uint64_t point_id) const;
 
  private:
   void assign_groups(const TriangleSoup& soup);
@@ -44,6 +56,8 @@ class InsideOracle {
   BBox box_;
   int rays_;
   uint64_t seed_;
+  bool enclosure_ = false;
+  size_t nonmanifold_edges_ = 0;
 };
 
 }  // namespace mc

@@ -32,6 +32,9 @@ struct PreprocessParams {
   // (core/corner_snap.hpp). false = the paper's behaviour (planes as fitted).
   bool snap_corners = true;
   int oracle_rays = 5;           // rays per point for the inside/outside majority vote
+  // Points the parity vote calls outside but that no ray (horizon to zenith) escapes from are
+  // inside: storeys whose floors are modelled as sheets inside the solid (core/oracle.hpp).
+  bool fill_enclosed = true;
   uint64_t seed = 1;             // every random choice derives from it (determinism)
   // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).
   std::string up_axis = "auto";

@@ -105,6 +105,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   const TriangleSoup oracle_tris = triangulate(oracle_mesh);
   InsideOracle oracle(oracle_tris.triangles.empty() ? tris : oracle_tris, p.oracle_rays, p.seed);
   oracle.set_merge_distance(out.dist);
+  oracle.set_enclosure(p.fill_enclosed);
   CarveParams cp;
   cp.cell_size = out.cell_size;
   cp.dist = out.dist;

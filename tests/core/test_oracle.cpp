@@ -74,6 +74,62 @@ TEST(Oracle, OverlappingShellsGluedAlongAnEdge) {
   EXPECT_FALSE(oracle.inside({2.8, 2.8, 1}, id++));    // beside the shared edge, outside both
 }
 
+// Two storeys whose floor is one sheet inside the solid, glued to the walls along the z = 3 ring
+// (edges of three faces), as in sample17's stacked storeys. An upward ray from the lower storey
+// crosses the sheet and the roof: even parity, "outside". No ray from there escapes, so with the
+// enclosure fallback it is inside. With the lower storey's east wall missing (an open arcade)
+// rays escape through it and the storey stays outside.
+PolygonMesh storeys_with_floor_sheet(bool east_wall_below) {
+  PolygonMesh m;
+  const double xy[4][2] = {{0, 0}, {10, 0}, {10, 8}, {0, 8}};
+  for (double z : {0.0, 3.0, 6.0})
+    for (const auto& c : xy) test::add_vertex(m, {c[0], c[1], z});
+  auto v = [](int level, int corner) { return static_cast<uint32_t>(4 * level + corner % 4); };
+  for (int level = 0; level < 2; ++level)
+    for (int k = 0; k < 4; ++k) {
+      if (level == 0 && k == 1 && !east_wall_below) continue;  // the wall x = 10, from (10,0) to (10,8)
+      test::add_face(m, {v(level, k), v(level, k + 1), v(level + 1, k + 1), v(level + 1, k)}, "WallSurface");
+    }
+  test::add_face(m, {v(0, 3), v(0, 2), v(0, 1), v(0, 0)}, "GroundSurface");
+  test::add_face(m, {v(1, 0), v(1, 1), v(1, 2), v(1, 3)}, "FloorSurface");  // the interior sheet
+  test::add_face(m, {v(2, 0), v(2, 1), v(2, 2), v(2, 3)}, "RoofSurface");
+  return m;
+}
+
+TEST(Oracle, EnclosedStoreyBelowAFloorSheetIsInside) {
+  const TriangleSoup soup = triangulate(storeys_with_floor_sheet(true));
+  InsideOracle oracle(soup, 7, 1);
+  EXPECT_EQ(oracle.nonmanifold_edges(), 4u);
+  const Vec3 lower{5, 4, 1.5}, upper{5, 4, 4.5};
+  EXPECT_FALSE(oracle.inside(lower, 0));  // parity alone gets it wrong
+  EXPECT_TRUE(oracle.inside(upper, 1));
+  EXPECT_TRUE(oracle.enclosed(lower, 0));
+  oracle.set_enclosure(true);
+  for (uint64_t id = 0; id < 50; ++id) {
+    EXPECT_TRUE(oracle.inside({1 + 0.16 * id, 4, 1.5}, id));
+    EXPECT_TRUE(oracle.inside({1 + 0.16 * id, 4, 4.5}, id));
+  }
+  EXPECT_FALSE(oracle.inside({5, 4, 6.5}, 100));  // outside the bounding box
+
+  InsideOracle open(triangulate(storeys_with_floor_sheet(false)), 7, 1);
+  open.set_enclosure(true);
+  EXPECT_FALSE(open.enclosed(lower, 0));
+  EXPECT_FALSE(open.inside(lower, 0));
+  EXPECT_TRUE(open.inside(upper, 1));
+}
+
+// Without edges of three or more faces there are no interior sheets: asking for the fallback
+// leaves it off, and the open-bottom L is classified by parity alone, exactly.
+TEST(Oracle, EnclosureStaysOffWithoutNonManifoldEdges) {
+  InsideOracle oracle(triangulate(test::l_prism(false)), 7, 1);
+  EXPECT_EQ(oracle.nonmanifold_edges(), 0u);
+  oracle.set_enclosure(true);
+  const auto probes = l_probes();
+  int wrong = 0;
+  for (size_t i = 0; i < probes.size(); ++i) wrong += oracle.inside(probes[i].p, i) != probes[i].inside;
+  EXPECT_EQ(wrong, 0);
+}
+
 TEST(Oracle, JitteredSoupWithOneRay) {
   PolygonMesh m = test::explode(test::as_mesh(triangulate(test::l_prism()), test::l_prism()));
   test::jitter(m, 0.001, 9);  // cracks of up to 2 mm between faces
