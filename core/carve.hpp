@@ -21,11 +21,16 @@ namespace mc {
 struct CarvePlane {
   uint32_t plane;  // registry id
   BBox bbox;       // bounding box of the region's faces
+  // The cap of an open bottom (the input's lowest level): what lies below it is outside the
+  // oracle's box, hence outside for sure. A cell it is hair-blocked in is still cut when the gap
+  // is safe (`min_gap`), however small its mislabelled share.
+  bool cap = false;
 };
 
 struct CarveParams {
   double cell_size = 1;  // c
   double dist = 0.25;    // δ
+  BBox oracle_box;       // beyond it every point is outside (invalid: no such box)
   int min_points = 100;
   int max_points = 10000;
   double inside_vote = 0.5;

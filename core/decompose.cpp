@@ -78,7 +78,12 @@ AnalysisContext make_context(const Preprocessed& pre, const DecomposeParams& p, 
 
 // Sequential phase: analyse the part, register its candidate planes, refine its cells by them,
 // and precompute on which side of every candidate each refined cell lies (exact predicates).
-Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
+// Refines a part's cells by its candidate planes (the only step of a part's preparation that
+// changes the complex). `finish` builds the part's space and root analysis afterwards: refining
+// a neighbouring part splits the facets the two share, so a space built before that would keep
+// dead facets (stale loops: boundary edges used once, false pinched vertices that refuse every
+// cut). Hence all parts of a level are refined first, then all spaces are built.
+Prepared refine(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
   CellComplex& cx = *pre.complex;
   PlaneRegistry& reg = *pre.planes;
   Prepared pr;
@@ -123,16 +128,27 @@ Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
     cells = std::move(next);
   }
   std::sort(cells.begin(), cells.end());
+  pr.space.cells = std::move(cells);
+  pr.input.pool = std::move(info.candidates);
+  pr.search = true;  // until finish() decides
+  return pr;
+}
+
+void finish(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
+  if (!pr.search) return;
+  const CellComplex& cx = *pre.complex;
+  const PlaneRegistry& reg = *pre.planes;
+  const std::vector<uint32_t> cells = pr.space.cells;
   pr.space = make_space(cx, cells);
-  pr.input.pool = info.candidates;
-  for (uint32_t plane : info.candidates) {
+  pr.input.positive.clear();
+  for (uint32_t plane : pr.input.pool) {
     Bits pos(pr.space.words(), 0);
     for (uint32_t i = 0; i < cells.size(); ++i)
       if (cx.cell_side(cells[i], plane) > 0) set_bit(pos, i);
     pr.input.positive.push_back(std::move(pos));
   }
   pr.input.ctx = ctx;
-  const auto pool = info.candidates;
+  const auto& pool = pr.input.pool;
   const PlaneResolver lookup = [&](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
     for (uint32_t id : pool)
       if (same_plane_in_box(g, reg[id], ctx.angle_rad, ctx.dist, ctx.box)) return id;
@@ -140,6 +156,11 @@ Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
   };
   pr.root = analyze_part(pr.space, pr.space.all(), ctx, lookup);
   pr.search = pr.root.e_sig > 0 && !pr.root.candidates.empty();
+}
+
+Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
+  Prepared pr = refine(pre, w, ctx);
+  finish(pre, pr, ctx);
   return pr;
 }
 
@@ -545,9 +566,10 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       std::vector<Prepared> prepared;
       prepared.reserve(work.size());
       for (const Work& w : work) {
-        prepared.push_back(prepare(pre, w, ctx));
+        prepared.push_back(refine(pre, w, ctx));
         prepared.back().input.deadline = deadline;
       }
+      for (Prepared& pr : prepared) finish(pre, pr, ctx);
       for (Prepared& pr : prepared) pr.input.space = &pr.space;
       std::vector<SearchResult> results(work.size());
       auto run_one = [&](size_t i) {

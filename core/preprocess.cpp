@@ -97,6 +97,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
   add_carve_plane({{0, 0, 1}, -out.box.lo.z}, out.box, mesh.label_index("GroundSurface"));
+  cps.back().cap = true;
   out.labels = mesh.semantic_labels;
 
   // Oracle and carving.
@@ -116,6 +117,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cp.seed = p.seed;
   cp.vote_batch = p.vote_batch;
   cp.min_gap = p.min_gap;
+  cp.oracle_box = oracle.bbox();
   const SurfaceIndex index(tris);
   // A cell the surface does not touch is uniformly inside or outside, except across the oracle's
   // box: beyond it everything is outside, so a cell hanging out of an open bottom (no floor face
