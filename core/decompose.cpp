@@ -573,11 +573,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     const auto tl = Clock::now();
     LevelResult level;
     level.lod = p.levels[li];
-    // The first level searches the whole building with its own candidate cap (default: all).
-    DecomposeParams level_params = p;
-    if (li == 0) level_params.max_candidates = p.first_level_candidates;
-    AnalysisContext ctx = make_context(pre, p, level.lod);
-    ctx.dec = &level_params;
+    const AnalysisContext ctx = make_context(pre, p, level.lod);
     for (Work& w : work) w.cells = current_leaves(cx, w.cells);
     if (Clock::now() <= deadline) {
       std::vector<Prepared> prepared;

@@ -60,9 +60,6 @@ struct DecomposeParams {
   double same_vol_factor = 1e-5; // duplicate / sliver tolerance relative to the root volume
   int max_children = 64;         // best children kept per expansion (-1 = all, as RC)
   int max_candidates = 12;       // top-K candidate planes per part by weight (0 = all)
-  // The same cap for the first level, where the whole building is one part and the main masses
-  // are chosen (0 = all, as the paper's code does at every level).
-  int first_level_candidates = 0;
   int64_t node_budget = 20000;   // expanded nodes per search
   bool significance_max = true;  // D(e) = max over samples (paper) instead of mean (RC)
   bool merge_tiny_parts = true;

@@ -189,32 +189,6 @@ TEST(Decompose, RevisitingBoundariesOnARealInputGivesFewerPartsAtLowerCost) {
     EXPECT_DOUBLE_EQ(serial.dec.levels.back().parts[i].volume, b.parts[i].volume);
 }
 
-// The first level searches the whole building. sample16 (a Hong Kong tower with a cross-shaped
-// plan, 79 concave lines) has many more candidate planes than the cap of 12 used at later levels;
-// the heaviest 12 miss the planes that split it into its main masses.
-TEST(Decompose, AllCandidatePlanesAtTheFirstLevelGiveALowerCost) {
-  int checked = 0;
-  for (const auto& s : test::samples()) {
-    if (s.name != "sample16") continue;
-    const PolygonMesh mesh = test::load_off(s.off.string());
-    auto first_level = [&](int candidates) {
-      const auto deadline = Clock::now() + std::chrono::seconds(120);
-      Preprocessed pre = preprocess(mesh, test::paper_params(s), deadline);
-      DecomposeParams dp;
-      dp.levels = {0.1};
-      dp.first_level_candidates = candidates;
-      const Decomposition d = decompose(pre, dp, deadline);
-      EXPECT_FALSE(d.partial);
-      return d.levels.at(0);
-    };
-    const LevelResult capped = first_level(12), all = first_level(0);
-    EXPECT_LT(all.cost, capped.cost - 0.01);
-    EXPECT_LE(all.parts.size(), capped.parts.size());
-    ++checked;
-  }
-  EXPECT_EQ(checked, 1);
-}
-
 // Refining one part splits the facets it shares with its neighbours. sample20 (Rockefeller
 // Center) showed what happens when a part's space is built before its neighbours are refined:
 // the space keeps dead facets, its pieces see boundary edges used once and "pinched vertices",
