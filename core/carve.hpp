@@ -21,10 +21,6 @@ namespace mc {
 struct CarvePlane {
   uint32_t plane;  // registry id
   BBox bbox;       // bounding box of the region's faces
-  // The cap of an open bottom (the input's lowest level): what lies below it is outside the
-  // oracle's box, hence outside for sure. A cell it is hair-blocked in is still cut when the gap
-  // is safe (`min_gap`), however small its mislabelled share.
-  bool cap = false;
 };
 
 struct CarveParams {

@@ -139,9 +139,8 @@ void finish(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
   if (!pr.search) return;
   const CellComplex& cx = *pre.complex;
   const PlaneRegistry& reg = *pre.planes;
-  const std::vector<uint32_t> cells = pr.space.cells;
-  pr.space = make_space(cx, cells);
-  pr.input.positive.clear();
+  pr.space = make_space(cx, std::vector<uint32_t>(pr.space.cells));
+  const std::vector<uint32_t>& cells = pr.space.cells;
   for (uint32_t plane : pr.input.pool) {
     Bits pos(pr.space.words(), 0);
     for (uint32_t i = 0; i < cells.size(); ++i)
@@ -343,10 +342,10 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
 // the whole-building normalisers, as in merge_convex_neighbours). Each union is searched right
 // after its preparation; then the results are taken greedily by decrease over disjoint piece
 // sets, ties by pair order, so the outcome does not depend on the thread count.
-// Cost: preparing each union (refining its cells by its candidates) and its search: 11% more
-// time on the paper samples (geometric-mean speed-up 14.8x -> 13.1x) for fewer parts on 5 of 16
-// and a lower cost on 8; on the 3D BAG tile 29% more CPU for 1.3% fewer finest parts (3-piece
-// unions are most of the work and one in eight is improved). Hence off by default.
+// Cost: preparing each union (refining its cells by its candidates) and its search: about 11%
+// more time on the paper samples for fewer parts on 6 of 16; on the 3D BAG tile 41% more CPU for
+// 1.7% fewer finest parts (3-piece unions are most of the work and few are improved; measured in
+// session 6, README "Measured"). Hence off by default.
 void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<Work> prev, std::vector<Work>& work,
                         const AnalysisContext& ctx, double n_max, double delta0, Clock::time_point deadline,
                         LevelResult& level) {

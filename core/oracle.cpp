@@ -45,6 +45,23 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// A ray from o (in the scene's centred frame) along dir, over its whole length.
+RTCRay make_ray(const Vec3& o, const Vec3& dir) {
+  RTCRay ray;
+  ray.org_x = static_cast<float>(o.x);
+  ray.org_y = static_cast<float>(o.y);
+  ray.org_z = static_cast<float>(o.z);
+  ray.dir_x = static_cast<float>(dir.x);
+  ray.dir_y = static_cast<float>(dir.y);
+  ray.dir_z = static_cast<float>(dir.z);
+  ray.tnear = 0.0f;
+  ray.tfar = std::numeric_limits<float>::infinity();
+  ray.mask = 0xFFFFFFFFu;
+  ray.flags = 0;
+  ray.time = 0;
+  return ray;
+}
+
 uint64_t splitmix64(uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -275,18 +292,7 @@ int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
   rtcInitIntersectContext(&ctx.base);
   ctx.hits = &hits;
   RTCRayHit rh;
-  const Vec3 o = p - impl_->origin;
-  rh.ray.org_x = static_cast<float>(o.x);
-  rh.ray.org_y = static_cast<float>(o.y);
-  rh.ray.org_z = static_cast<float>(o.z);
-  rh.ray.dir_x = static_cast<float>(dir.x);
-  rh.ray.dir_y = static_cast<float>(dir.y);
-  rh.ray.dir_z = static_cast<float>(dir.z);
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = std::numeric_limits<float>::infinity();
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.flags = 0;
-  rh.ray.time = 0;
+  rh.ray = make_ray(p - impl_->origin, dir);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &ctx.base, &rh);
@@ -368,18 +374,7 @@ bool InsideOracle::enclosed(const Vec3& p, uint64_t point_id) const {
     const int n = elev >= 90 ? 1 : kAzimuths;
     for (int k = 0; k < n; ++k) {
       const double phi = turn + 2 * M_PI * k / kAzimuths;
-      RTCRay ray;
-      ray.org_x = static_cast<float>(o.x);
-      ray.org_y = static_cast<float>(o.y);
-      ray.org_z = static_cast<float>(o.z);
-      ray.dir_x = static_cast<float>(r * std::cos(phi));
-      ray.dir_y = static_cast<float>(r * std::sin(phi));
-      ray.dir_z = static_cast<float>(z);
-      ray.tnear = 0.0f;
-      ray.tfar = std::numeric_limits<float>::infinity();
-      ray.mask = 0xFFFFFFFFu;
-      ray.flags = 0;
-      ray.time = 0;
+      RTCRay ray = make_ray(o, {r * std::cos(phi), r * std::sin(phi), z});
       RTCIntersectContext ctx;
       rtcInitIntersectContext(&ctx);
       rtcOccluded1(impl_->scene, &ctx, &ray);

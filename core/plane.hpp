@@ -33,8 +33,10 @@ struct BBox {
     return lo.x <= o.hi.x + grow && o.lo.x <= hi.x + grow && lo.y <= o.hi.y + grow && o.lo.y <= hi.y + grow &&
            lo.z <= o.hi.z + grow && o.lo.z <= hi.z + grow;
   }
-  bool contains(const BBox& o) const {
-    return o.lo.x >= lo.x && o.lo.y >= lo.y && o.lo.z >= lo.z && o.hi.x <= hi.x && o.hi.y <= hi.y && o.hi.z <= hi.z;
+  // `o` lies inside this box grown by `grow`.
+  bool contains(const BBox& o, double grow = 0) const {
+    return o.lo.x >= lo.x - grow && o.lo.y >= lo.y - grow && o.lo.z >= lo.z - grow && o.hi.x <= hi.x + grow &&
+           o.hi.y <= hi.y + grow && o.hi.z <= hi.z + grow;
   }
 };
 

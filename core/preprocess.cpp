@@ -97,7 +97,6 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
   add_carve_plane({{0, 0, 1}, -out.box.lo.z}, out.box, mesh.label_index("GroundSurface"));
-  cps.back().cap = true;
   out.labels = mesh.semantic_labels;
 
   // Oracle and carving.
