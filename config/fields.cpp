@@ -44,6 +44,7 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "revisit_boundaries", &d.revisit_boundaries},
       {"decompose", "revisit_candidates", &d.revisit_candidates},
       {"decompose", "merge_convex_parts", &d.merge_convex_parts},
+      {"decompose", "uncut_convexity", &d.uncut_convexity},
       {"", "timeout_s", &p.timeout_s},
       {"", "max_faces", &p.max_faces},
       {"", "threads", &p.threads},

@@ -85,6 +85,8 @@ void validate_dec(const DecomposeParams& d) {
   one_of("decompose.cut_mode", d.cut_mode, {"A", "H", "V", "HV", "HI", "VI"});
   finite("decompose.cvx_thresh", d.cvx_thresh);
   if (!(d.cvx_thresh > 0 && d.cvx_thresh <= 1)) throw ConfigError("decompose.cvx_thresh", "must be in (0, 1]");
+  finite("decompose.uncut_convexity", d.uncut_convexity);
+  if (!(d.uncut_convexity > 0 && d.uncut_convexity <= 1)) throw ConfigError("decompose.uncut_convexity", "must be in (0, 1]");
   finite("decompose.same_vol_factor", d.same_vol_factor);
   if (!(d.same_vol_factor >= 0 && d.same_vol_factor < 1))
     throw ConfigError("decompose.same_vol_factor", "must be in [0, 1)");

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 
 #include "core/hull.hpp"
@@ -500,6 +501,117 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
   work = std::move(next);
 }
 
+// Volume-weighted convexity contribution V·(V/V_CH) of a part, as level_statistics reports it.
+double weighted_convexity(const PartInfo& info) {
+  const double c = info.delta == 0 && !info.nearly_convex ? 1.0 : info.convexity();
+  return info.volume * c;
+}
+
+// Undoes the cuts of a level that raise its whole-building cost (decompose.refuse_costly_cuts).
+// Each part is searched with its own normalisers (algorithm.md §6.7), so a search can cut a
+// nearly convex part into pieces that raise the level's cost (§6.3 with the normalisers of §6.8);
+// the paper's own finest levels often cost more than the level before (its sample9 1.8865 ->
+// 1.9231, sample16 1.6358 -> 1.6510). After the level's merges, the previous parts are grouped so
+// that every part of the level lies within one group (a merge across a previous boundary joins
+// the two previous parts' groups); each group's parts are compared with the group's previous
+// parts, and the costliest groups are put back first, as long as the level's volume-weighted
+// convexity stays at least cvx_thresh: once the building as a whole is as convex as the user
+// asks of a part, a further cut has to pay for itself in the objective. Below that convexity
+// every cut is kept, so coarse levels are never held back.
+void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& prev,
+                        std::vector<Work>& work, const AnalysisContext& ctx, double n_max, double delta0) {
+  const CellComplex& cx = *pre.complex;
+  if (prev.empty()) return;
+  std::unordered_map<uint32_t, uint32_t> prev_of;  // current cell -> previous part
+  std::vector<std::vector<uint32_t>> prev_cells(prev.size());
+  for (uint32_t q = 0; q < prev.size(); ++q) {
+    prev_cells[q] = current_leaves(cx, prev[q].cells);
+    for (uint32_t c : prev_cells[q]) prev_of[c] = q;
+  }
+  // Groups of previous parts (union-find, smallest index as root).
+  std::vector<uint32_t> up(prev.size());
+  for (uint32_t q = 0; q < prev.size(); ++q) up[q] = q;
+  auto find = [&](uint32_t q) {
+    while (up[q] != q) q = up[q] = up[up[q]];
+    return q;
+  };
+  std::vector<uint32_t> first_owner(work.size());
+  for (uint32_t j = 0; j < work.size(); ++j) {
+    uint32_t r = CellComplex::kNone;
+    for (uint32_t c : work[j].cells) {
+      auto it = prev_of.find(c);
+      if (it == prev_of.end()) return;  // a cell from no previous part: leave the level as it is
+      const uint32_t o = find(it->second);
+      if (r == CellComplex::kNone) r = o;
+      else if (o != r) up[std::max(o, r)] = std::min(o, r), r = std::min(o, r);
+    }
+    if (r == CellComplex::kNone) return;
+    first_owner[j] = work[j].cells.empty() ? 0 : prev_of.at(work[j].cells.front());
+  }
+  std::map<uint32_t, std::vector<uint32_t>> parts_of, prevs_of;  // group root -> level parts / previous parts
+  for (uint32_t j = 0; j < work.size(); ++j) parts_of[find(first_owner[j])].push_back(j);
+  for (uint32_t q = 0; q < prev.size(); ++q) prevs_of[find(q)].push_back(q);
+  bool any = false;
+  for (const auto& [g, js] : parts_of) any |= js.size() != prevs_of[g].size() || js.size() > 1;
+  if (!any) return;
+  const LevelSpace ls(cx, work);
+  std::vector<PartInfo> info;
+  double weighted = 0, volume = 0;
+  for (const Work& w : work) {
+    info.push_back(analyze_part(ls.space, ls.bits(w), ctx, kNoNewPlanes));
+    weighted += weighted_convexity(info.back());
+    volume += info.back().volume;
+  }
+  std::vector<std::tuple<double, uint32_t, double>> costly;  // (cost change, group, Σ V·convexity lost)
+  for (const auto& [g, js] : parts_of) {
+    const std::vector<uint32_t>& qs = prevs_of[g];
+    if (js.size() <= 1) continue;  // a group that is one part is its one previous part
+    double d_delta = 0, d_weighted = 0;
+    int d_e = 0;
+    bool stays_cut = false;  // a previous part would be pinched, or less convex than uncut_convexity
+    for (uint32_t q : qs) {
+      Bits whole(ls.space.words(), 0);
+      for (uint32_t c : prev_cells[q]) set_bit(whole, ls.local.at(c));
+      const PartInfo qi = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
+      stays_cut |= qi.pinch_edges > 0;
+      stays_cut |= weighted_convexity(qi) < p.uncut_convexity * qi.volume;
+      d_delta -= qi.delta;
+      d_e -= qi.e_all;
+      d_weighted -= weighted_convexity(qi);
+    }
+    if (stays_cut) continue;
+    for (uint32_t j : js) {
+      d_delta += info[j].delta;
+      d_e += info[j].e_all;
+      d_weighted += weighted_convexity(info[j]);
+    }
+    const double dn = double(js.size()) - double(qs.size());
+    const double change = level_cost_change(p, n_max, delta0, dn, d_delta, double(d_e));
+    if (change > 1e-12) costly.emplace_back(change, g, d_weighted);
+  }
+  std::sort(costly.begin(), costly.end(), [](const auto& a, const auto& b) {
+    return std::get<0>(a) != std::get<0>(b) ? std::get<0>(a) > std::get<0>(b) : std::get<1>(a) < std::get<1>(b);
+  });
+  std::vector<bool> restore(prev.size(), false);
+  for (const auto& [change, g, lost] : costly) {
+    if (volume <= 0 || (weighted - lost) / volume < p.cvx_thresh) continue;
+    weighted -= lost;
+    restore[g] = true;
+  }
+  // The level's parts in order; a restored group's previous parts take its first part's place.
+  std::vector<Work> next;
+  std::set<uint32_t> done;
+  for (uint32_t j = 0; j < work.size(); ++j) {
+    const uint32_t g = find(first_owner[j]);
+    if (!restore[g]) {
+      next.push_back(std::move(work[j]));
+    } else if (done.insert(g).second) {
+      for (uint32_t q : prevs_of[g]) next.push_back({prev_cells[q], prev[q].component});
+    }
+  }
+  work = std::move(next);
+}
+
 // Whole-building statistics of a level (normalised by the singleton cell R, algorithm.md §6.8).
 void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& work,
                       const AnalysisContext& ctx, double n_max, double delta0, LevelResult& out) {
@@ -610,10 +722,12 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       }
       std::vector<Work> prev = std::move(work);
       work = std::move(next);
+      const std::vector<Work> prev_parts = p.uncut_convexity < 1 ? prev : std::vector<Work>{};
       if (p.revisit_boundaries && li > 0)
         revisit_boundaries(pre, p, std::move(prev), work, ctx, n_max, delta0, deadline, level);
       if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
       if (p.merge_convex_parts) merge_convex_neighbours(pre, p, work, ctx, n_max, delta0);
+      if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev_parts, work, ctx, n_max, delta0);
     } else {
       out.partial = true;
       if (out.reason.empty()) out.reason = "deadline reached before LoD " + std::to_string(level.lod);

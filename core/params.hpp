@@ -69,6 +69,10 @@ struct DecomposeParams {
   bool revisit_boundaries = false;
   int revisit_candidates = 4;
   bool merge_convex_parts = true;  // after each level, merge neighbours while the level's cost drops
+  // After each level, undo cuts that raise the level's whole-building cost (the searches use
+  // per-part normalisers, algorithm.md §6.7) when every part put back is at least this convex and
+  // the building stays at least cvx_thresh convex (decompose.cpp, refuse_costly_cuts); 1 = never.
+  double uncut_convexity = 0.95;
   // Concave-line grouping: true splits a plane pair's edges into connected chains (algorithm.md
   // §4.2 REC); false groups every edge of a plane pair into one line, as the research code does.
   bool split_chains = true;

@@ -50,6 +50,7 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"decompose:\n  node_budget: 0\n", "decompose.node_budget: must be >= 1"},
         Bad{"decompose:\n  revisit_candidates: -1\n", "decompose.revisit_candidates: must be >= 0 (0 = all)"},
         Bad{"decompose:\n  revisit_boundaries: 3\n", "decompose.revisit_boundaries: expected true or false, got '3'"},
+        Bad{"decompose:\n  uncut_convexity: 0\n", "decompose.uncut_convexity: must be in (0, 1]"},
         Bad{"decompose: [1, 2]\n", "decompose: expected a mapping of keys, got a list"},
         Bad{"preprocess:\n  cell_size: 0\n", "preprocess.cell_size: must be > 0 or auto"},
         Bad{"preprocess:\n  cell_size: -1\n", "preprocess.cell_size: must be > 0 or auto"},
