@@ -501,23 +501,27 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
   work = std::move(next);
 }
 
-// Volume-weighted convexity contribution V·(V/V_CH) of a part, as level_statistics reports it.
-double weighted_convexity(const PartInfo& info) {
-  const double c = info.delta == 0 && !info.nearly_convex ? 1.0 : info.convexity();
-  return info.volume * c;
+// A part's convexity V/V_CH as reported (1 for an exactly convex part).
+double reported_convexity(const PartInfo& info) {
+  return info.delta == 0 && !info.nearly_convex ? 1.0 : info.convexity();
 }
 
-// Undoes the cuts of a level that raise its whole-building cost (decompose.refuse_costly_cuts).
+// A part's term V·(V/V_CH) of the level's volume-weighted convexity.
+double weighted_convexity(const PartInfo& info) { return info.volume * reported_convexity(info); }
+
+// Undoes the cuts of a level that raise its whole-building cost (decompose.uncut_convexity).
 // Each part is searched with its own normalisers (algorithm.md §6.7), so a search can cut a
 // nearly convex part into pieces that raise the level's cost (§6.3 with the normalisers of §6.8);
-// the paper's own finest levels often cost more than the level before (its sample9 1.8865 ->
-// 1.9231, sample16 1.6358 -> 1.6510). After the level's merges, the previous parts are grouped so
-// that every part of the level lies within one group (a merge across a previous boundary joins
-// the two previous parts' groups); each group's parts are compared with the group's previous
-// parts, and the costliest groups are put back first, as long as the level's volume-weighted
-// convexity stays at least cvx_thresh: once the building as a whole is as convex as the user
-// asks of a part, a further cut has to pay for itself in the objective. Below that convexity
-// every cut is kept, so coarse levels are never held back.
+// the paper's own finest levels often cost more than a coarser one (its sample9: 1.8865 at 1e-2,
+// 1.9231 at 1e-4; sample16: 1.6358 at 1e-3, 1.6510 at 1e-4).
+// After the level's merges, the previous parts are grouped so that every part of the level lies
+// within one group (a merge across a previous boundary joins the two groups). A group whose parts
+// cost more than its previous parts whole is put back, costliest first, if every previous part is
+// at least uncut_convexity convex and the level's volume-weighted convexity stays at least
+// cvx_thresh: once the building is as convex as the user asks of a part, a further cut has to pay
+// for itself in the objective. Coarse levels and visibly concave parts keep their cuts. Without
+// the per-part floor, tiny concave parts came back (convexity 0.18 on sample17) because the
+// whole-building objective barely sees them (README, "Cuts that raise the level's cost").
 void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& prev,
                         std::vector<Work>& work, const AnalysisContext& ctx, double n_max, double delta0) {
   const CellComplex& cx = *pre.complex;
@@ -574,7 +578,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
       for (uint32_t c : prev_cells[q]) set_bit(whole, ls.local.at(c));
       const PartInfo qi = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
       stays_cut |= qi.pinch_edges > 0;
-      stays_cut |= weighted_convexity(qi) < p.uncut_convexity * qi.volume;
+      stays_cut |= reported_convexity(qi) < p.uncut_convexity;
       d_delta -= qi.delta;
       d_e -= qi.e_all;
       d_weighted -= weighted_convexity(qi);
@@ -633,7 +637,7 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
     r.component = work[i].component;
     r.volume = info.volume;
     r.hull_volume = info.hull_volume;
-    r.convexity = info.delta == 0 && !info.nearly_convex ? 1.0 : info.convexity();
+    r.convexity = reported_convexity(info);
     r.neighbours = neighbour_owners(cx, work[i].cells, i, lookup_in(owner));
     sum_delta += info.delta;
     sum_e += info.e_all;
