@@ -555,9 +555,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
   std::map<uint32_t, std::vector<uint32_t>> parts_of, prevs_of;  // group root -> level parts / previous parts
   for (uint32_t j = 0; j < work.size(); ++j) parts_of[find(first_owner[j])].push_back(j);
   for (uint32_t q = 0; q < prev.size(); ++q) prevs_of[find(q)].push_back(q);
-  bool any = false;
-  for (const auto& [g, js] : parts_of) any |= js.size() != prevs_of[g].size() || js.size() > 1;
-  if (!any) return;
+  if (std::none_of(parts_of.begin(), parts_of.end(), [](const auto& e) { return e.second.size() > 1; })) return;
   const LevelSpace ls(cx, work);
   std::vector<PartInfo> info;
   double weighted = 0, volume = 0;

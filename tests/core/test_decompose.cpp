@@ -55,6 +55,13 @@ double mesh_volume(const PolygonMesh& m) {
   return v;
 }
 
+// The singleton cell's volume (all components): every level's parts must add up to it.
+double cell_volume(const Outcome& r) {
+  double v = 0;
+  for (const auto& c : r.pre.components) v += c.volume;
+  return v;
+}
+
 void expect_valid_levels(const Outcome& r, double volume) {
   ASSERT_FALSE(r.dec.levels.empty());
   for (const auto& level : r.dec.levels) {
@@ -178,9 +185,7 @@ TEST(Decompose, RevisitingBoundariesOnARealInputGivesFewerPartsAtLowerCost) {
   EXPECT_LE(b.parts.size(), 13u);  // the paper's count
   EXPECT_LT(b.cost, a.cost);
   EXPECT_GE(b.convexity, 0.99);
-  double volume = 0;
-  for (const auto& c : revisited.pre.components) volume += c.volume;
-  expect_valid_levels(revisited, volume);
+  expect_valid_levels(revisited, cell_volume(revisited));
   // Same parts with one thread (the revisiting searches run in parallel).
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   const Outcome serial = run_with(true);
@@ -217,9 +222,7 @@ TEST(Decompose, CutsThatRaiseTheLevelsCostAreUndone) {
     EXPECT_LT(b.cost, a.cost);
     EXPECT_GE(b.convexity, DecomposeParams{}.cvx_thresh);
     EXPECT_GE(b.min_convexity, std::min(a.min_convexity, 0.95));
-    double volume = 0;
-    for (const auto& c : undone.pre.components) volume += c.volume;
-    expect_valid_levels(undone, volume);
+    expect_valid_levels(undone, cell_volume(undone));
     ++checked;
   }
   EXPECT_EQ(checked, 1);
@@ -244,9 +247,7 @@ TEST(Decompose, TinyPartsMergeWhereTheHullGrowsLeast) {
   const LevelResult& fine = r.dec.levels[3];
   EXPECT_GE(fine.convexity, 0.99);
   EXPECT_LE(fine.cost, before.cost + 1e-9);
-  double volume = 0;
-  for (const auto& c : r.pre.components) volume += c.volume;
-  expect_valid_levels(r, volume);
+  expect_valid_levels(r, cell_volume(r));
 }
 
 // Refining one part splits the facets it shares with its neighbours. sample20 (Rockefeller
@@ -271,9 +272,7 @@ TEST(Decompose, PartsAreCutAfterTheirNeighboursAreRefined) {
     EXPECT_FALSE(r.dec.partial);
     EXPECT_GE(fine.convexity, 0.995);
     EXPECT_GE(fine.min_convexity, 0.95);
-    double volume = 0;
-    for (const auto& c : r.pre.components) volume += c.volume;
-    expect_valid_levels(r, volume);
+    expect_valid_levels(r, cell_volume(r));
     ++checked;
   }
   EXPECT_EQ(checked, 1);
