@@ -5,6 +5,8 @@
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 namespace mc {
 
@@ -19,31 +21,77 @@ Hull convex_hull(const std::vector<Vec3>& points) {
   Mesh m;
   CGAL::convex_hull_3(pts.begin(), pts.end(), m);
   if (m.number_of_faces() < 4) return h;  // coplanar input: no volume
-  // CGAL returns the facets in an order that depends on memory addresses, so everything below is
-  // made independent of it (byte-identical results whatever the thread count): the interior
-  // point is the mean of the input points, each facet starts at its lexicographically smallest
-  // vertex, and volumes are summed in sorted order.
-  Vec3 o;
-  for (const Vec3& p : points) o += p;
-  o = o / static_cast<double>(points.size());
+  // CGAL triangulates a facet with four or more coplanar points in an order that depends on memory
+  // addresses, and so did the last bit of the volume (two runs of a sample with two threads
+  // reported different hull volumes). So triangles are first grouped into the hull's true facets
+  // (exact coplanarity across their shared edges), and everything below is computed from vertex
+  // sets alone, whatever the order of the input: the interior point is the mean of the hull's
+  // vertices in lexicographic order, a facet's vertices are put in angular order starting from
+  // the lexicographically smallest, and volumes and facets are sorted.
+  std::vector<uint32_t> up(m.number_of_faces());
+  for (uint32_t i = 0; i < up.size(); ++i) up[i] = i;
+  auto find = [&](uint32_t i) {
+    while (up[i] != i) i = up[i] = up[up[i]];
+    return i;
+  };
+  for (auto e : m.edges()) {
+    const auto he = m.halfedge(e);
+    const auto f1 = m.face(he), f2 = m.face(m.opposite(he));
+    if (f1 == Mesh::null_face() || f2 == Mesh::null_face()) continue;
+    const auto& a = m.point(m.source(he));
+    const auto& b = m.point(m.target(he));
+    const auto& c = m.point(m.target(m.next(he)));
+    const auto& d = m.point(m.target(m.next(m.opposite(he))));
+    if (CGAL::coplanar(a, b, c, d)) up[find(uint32_t(f1.idx()))] = find(uint32_t(f2.idx()));
+  }
   auto less = [](const Vec3& a, const Vec3& b) {
     return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
   };
-  std::vector<double> parts;
-  std::vector<std::pair<std::vector<Vec3>, Plane>> facets;
-  for (auto f : m.faces()) {
-    std::vector<Vec3> poly;
+  std::vector<std::vector<Vec3>> groups(up.size());
+  for (auto f : m.faces())
     for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
       const auto& p = m.point(v);
-      poly.push_back({p.x(), p.y(), p.z()});
+      groups[find(uint32_t(f.idx()))].push_back({p.x(), p.y(), p.z()});
     }
+  // Interior point: the mean of the hull's vertices in lexicographic order.
+  std::vector<Vec3> corners;
+  for (auto v : m.vertices()) corners.push_back({m.point(v).x(), m.point(v).y(), m.point(v).z()});
+  std::sort(corners.begin(), corners.end(), less);
+  Vec3 o;
+  for (const Vec3& p : corners) o += p;
+  o = o / static_cast<double>(corners.size());
+  std::vector<double> parts;
+  std::vector<std::pair<std::vector<Vec3>, Plane>> facets;
+  for (std::vector<Vec3>& poly : groups) {
+    std::sort(poly.begin(), poly.end(), less);
+    poly.erase(std::unique(poly.begin(), poly.end()), poly.end());
     if (poly.size() < 3) continue;
+    // Facet normal from the vertex set: the widest triangle on the smallest vertex, outward.
+    Vec3 n;
+    double best = 0;
+    for (size_t i = 1; i < poly.size(); ++i)
+      for (size_t j = i + 1; j < poly.size(); ++j) {
+        const Vec3 c = cross(poly[i] - poly[0], poly[j] - poly[0]);
+        if (norm(c) > best) best = norm(c), n = c;
+      }
+    if (best <= 0) continue;
+    n = n / best;
+    if (dot(n, poly[0] - o) < 0) n = -n;
+    // Counter-clockwise about n around the vertices' mean, starting at the smallest vertex.
+    Vec3 mid;
+    for (const Vec3& p : poly) mid += p;
+    mid = mid / static_cast<double>(poly.size());
+    const Vec3 u = poly[0] - mid, w = cross(n, u);
+    std::vector<std::pair<double, Vec3>> ring;
+    for (const Vec3& p : poly) ring.push_back({std::atan2(dot(p - mid, w), dot(p - mid, u)), p});
+    std::sort(ring.begin(), ring.end(), [&](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t i = 0; i < ring.size(); ++i) poly[i] = ring[i].second;
     std::rotate(poly.begin(), std::min_element(poly.begin(), poly.end(), less), poly.end());
     Vec3 area;
     for (size_t i = 1; i + 1 < poly.size(); ++i) area += cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
     const double len = norm(area);
     if (len <= 0) continue;
-    Vec3 n = area / len;
+    n = area / len;
     if (dot(n, poly[0] - o) < 0) n = -n;
     parts.push_back(std::abs(dot(poly[0] - o, area)) / 6.0);
     // A sliver facet's double normal can be tilted: push its plane out to the farthest point so
