@@ -37,6 +37,7 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "same_vol_factor", &d.same_vol_factor},
       {"decompose", "max_children", &d.max_children},
       {"decompose", "max_candidates", &d.max_candidates},
+      {"decompose", "first_level_candidates", &d.first_level_candidates},
       {"decompose", "node_budget", &d.node_budget},
       {"decompose", "significance_max", &d.significance_max},
       {"decompose", "split_chains", &d.split_chains},

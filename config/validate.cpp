@@ -93,6 +93,7 @@ void validate_dec(const DecomposeParams& d) {
   if (d.max_children == 0 || d.max_children < -1)
     throw ConfigError("decompose.max_children", "must be -1 (keep all) or >= 1");
   at_least("decompose.max_candidates", d.max_candidates, 0, " (0 = all)");
+  at_least("decompose.first_level_candidates", d.first_level_candidates, -1, " (-1 = max_candidates, 0 = all)");
   at_least("decompose.revisit_candidates", d.revisit_candidates, 0, " (0 = all)");
   at_least("decompose.node_budget", static_cast<double>(d.node_budget), 1);
 }

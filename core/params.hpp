@@ -60,6 +60,10 @@ struct DecomposeParams {
   double same_vol_factor = 1e-5; // duplicate / sliver tolerance relative to the root volume
   int max_children = 64;         // best children kept per expansion (-1 = all, as RC)
   int max_candidates = 12;       // top-K candidate planes per part by weight (0 = all)
+  // The same cap for the first level's searches (whole components; -1 = max_candidates, 0 = all).
+  // There is one such search per component and every later level only refines inside its parts,
+  // so a wider choice there can pay; measured mixed (decompose.cpp, decompose()), hence opt-in.
+  int first_level_candidates = -1;
   int64_t node_budget = 20000;   // expanded nodes per search
   bool significance_max = true;  // D(e) = max over samples (paper) instead of mean (RC)
   bool merge_tiny_parts = true;

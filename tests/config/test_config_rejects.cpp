@@ -49,6 +49,7 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"decompose:\n  concave_thresh: 0.5\n", "decompose.concave_thresh: must be in [1, 2)"},
         Bad{"decompose:\n  node_budget: 0\n", "decompose.node_budget: must be >= 1"},
         Bad{"decompose:\n  revisit_candidates: -1\n", "decompose.revisit_candidates: must be >= 0 (0 = all)"},
+        Bad{"decompose:\n  first_level_candidates: -2\n", "decompose.first_level_candidates: must be >= -1 (-1 = max_candidates, 0 = all)"},
         Bad{"decompose:\n  revisit_boundaries: 3\n", "decompose.revisit_boundaries: expected true or false, got '3'"},
         Bad{"decompose:\n  uncut_convexity: 0\n", "decompose.uncut_convexity: must be in (0, 1]"},
         Bad{"decompose: [1, 2]\n", "decompose: expected a mapping of keys, got a list"},

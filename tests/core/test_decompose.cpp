@@ -228,6 +228,37 @@ TEST(Decompose, CutsThatRaiseTheLevelsCostAreUndone) {
   EXPECT_EQ(checked, 1);
 }
 
+// sample16 (a 3D BAG block of 140,000 m³): its first level has more candidate planes than the
+// per-part cap of 12, and the best of them are not all among the 12 heaviest. With the opt-in
+// first-level cap at 48 the search finds fewer parts at a lower cost in its own objective.
+TEST(Decompose, FirstLevelChoosesAmongMoreCandidatePlanes) {
+  int checked = 0;
+  for (const auto& s : test::samples()) {
+    if (s.name != "sample16") continue;
+    const PreprocessParams pp = test::paper_params(s);
+    const auto deadline = Clock::now() + std::chrono::seconds(120);
+    const PolygonMesh mesh = test::load_off(s.off.string());
+    auto run_with = [&](int first_level_candidates) {
+      Outcome r{preprocess(mesh, pp, deadline), {}};
+      DecomposeParams dp;
+      dp.levels = {0.1};
+      dp.first_level_candidates = first_level_candidates;
+      r.dec = decompose(r.pre, dp, deadline);
+      return r;
+    };
+    const Outcome capped = run_with(-1);  // the default: max_candidates (12)
+    const Outcome wide = run_with(48);
+    ASSERT_EQ(wide.dec.levels.size(), 1u);
+    const LevelResult& a = capped.dec.levels.front();
+    const LevelResult& b = wide.dec.levels.front();
+    EXPECT_LT(b.parts.size(), a.parts.size());
+    EXPECT_LT(b.cost, a.cost - 0.01);
+    expect_valid_levels(wide, cell_volume(wide));
+    ++checked;
+  }
+  EXPECT_EQ(checked, 1);
+}
+
 // A real 3D BAG building (tile 5910, NL.IMBAG.Pand.0503100000018414, LoD2.2, 71 faces; CC BY 4.0
 // 3D BAG; coordinates shifted to its first vertex). With cvx_thresh 0.992 the finest level's
 // search leaves a 0.03 m³ sliver beside a 365 m³ box. Merged into the neighbour it shares most
