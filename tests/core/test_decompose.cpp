@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include <tbb/global_control.h>
@@ -74,6 +75,19 @@ void expect_valid_levels(const Outcome& r, double volume) {
     }
     EXPECT_NEAR(sum, volume, 1e-9 * volume);  // parts tile the singleton cell
   }
+}
+
+// Preprocesses paper sample `name` with its published parameters and decomposes it with `dp`
+// (nullopt when the shared samples are not there).
+std::optional<Outcome> run_sample(const std::string& name, const DecomposeParams& dp) {
+  for (const auto& s : test::samples()) {
+    if (s.name != name) continue;
+    const auto deadline = Clock::now() + std::chrono::seconds(120);
+    Outcome r{preprocess(test::load_off(s.off.string()), test::paper_params(s), deadline), {}};
+    r.dec = decompose(r.pre, dp, deadline);
+    return r;
+  }
+  return std::nullopt;
 }
 
 TEST(Decompose, BoxGivesOnePart) {
@@ -200,63 +214,39 @@ TEST(Decompose, RevisitingBoundariesOnARealInputGivesFewerPartsAtLowerCost) {
 // is at least 0.95 convex leaves fewer parts at a lower cost, the building at least cvx_thresh
 // convex and no part less convex than before or than 0.95.
 TEST(Decompose, CutsThatRaiseTheLevelsCostAreUndone) {
-  int checked = 0;
-  for (const auto& s : test::samples()) {
-    if (s.name != "sample22") continue;
-    const PreprocessParams pp = test::paper_params(s);
-    const auto deadline = Clock::now() + std::chrono::seconds(120);
-    const PolygonMesh mesh = test::load_off(s.off.string());
-    auto run_with = [&](double uncut) {
-      Outcome r{preprocess(mesh, pp, deadline), {}};
-      DecomposeParams dp;
-      dp.uncut_convexity = uncut;
-      r.dec = decompose(r.pre, dp, deadline);
-      return r;
-    };
-    const Outcome kept = run_with(1.0);
-    const Outcome undone = run_with(0.95);
-    ASSERT_EQ(undone.dec.levels.size(), 4u);
-    const LevelResult& a = kept.dec.levels.back();
-    const LevelResult& b = undone.dec.levels.back();
-    EXPECT_LT(b.parts.size(), a.parts.size());
-    EXPECT_LT(b.cost, a.cost);
-    EXPECT_GE(b.convexity, DecomposeParams{}.cvx_thresh);
-    EXPECT_GE(b.min_convexity, std::min(a.min_convexity, 0.95));
-    expect_valid_levels(undone, cell_volume(undone));
-    ++checked;
-  }
-  EXPECT_EQ(checked, 1);
+  DecomposeParams off, on;
+  off.uncut_convexity = 1.0;
+  on.uncut_convexity = 0.95;
+  const std::optional<Outcome> kept = run_sample("sample22", off);
+  const std::optional<Outcome> undone = run_sample("sample22", on);
+  ASSERT_TRUE(kept && undone) << "sample22 not found in " << test::samples_dir();
+  ASSERT_EQ(undone->dec.levels.size(), 4u);
+  const LevelResult& a = kept->dec.levels.back();
+  const LevelResult& b = undone->dec.levels.back();
+  EXPECT_LT(b.parts.size(), a.parts.size());
+  EXPECT_LT(b.cost, a.cost);
+  EXPECT_GE(b.convexity, DecomposeParams{}.cvx_thresh);
+  EXPECT_GE(b.min_convexity, std::min(a.min_convexity, 0.95));
+  expect_valid_levels(*undone, cell_volume(*undone));
 }
 
 // sample16 (a 3D BAG block of 140,000 m³): its first level has more candidate planes than the
 // per-part cap of 12, and the best of them are not all among the 12 heaviest. With the opt-in
 // first-level cap at 48 the search finds fewer parts at a lower cost in its own objective.
 TEST(Decompose, FirstLevelChoosesAmongMoreCandidatePlanes) {
-  int checked = 0;
-  for (const auto& s : test::samples()) {
-    if (s.name != "sample16") continue;
-    const PreprocessParams pp = test::paper_params(s);
-    const auto deadline = Clock::now() + std::chrono::seconds(120);
-    const PolygonMesh mesh = test::load_off(s.off.string());
-    auto run_with = [&](int first_level_candidates) {
-      Outcome r{preprocess(mesh, pp, deadline), {}};
-      DecomposeParams dp;
-      dp.levels = {0.1};
-      dp.first_level_candidates = first_level_candidates;
-      r.dec = decompose(r.pre, dp, deadline);
-      return r;
-    };
-    const Outcome capped = run_with(-1);  // the default: max_candidates (12)
-    const Outcome wide = run_with(48);
-    ASSERT_EQ(wide.dec.levels.size(), 1u);
-    const LevelResult& a = capped.dec.levels.front();
-    const LevelResult& b = wide.dec.levels.front();
-    EXPECT_LT(b.parts.size(), a.parts.size());
-    EXPECT_LT(b.cost, a.cost - 0.01);
-    expect_valid_levels(wide, cell_volume(wide));
-    ++checked;
-  }
-  EXPECT_EQ(checked, 1);
+  DecomposeParams capped_params, wide_params;
+  capped_params.levels = wide_params.levels = {0.1};
+  capped_params.first_level_candidates = -1;  // the default: max_candidates (12)
+  wide_params.first_level_candidates = 48;
+  const std::optional<Outcome> capped = run_sample("sample16", capped_params);
+  const std::optional<Outcome> wide = run_sample("sample16", wide_params);
+  ASSERT_TRUE(capped && wide) << "sample16 not found in " << test::samples_dir();
+  ASSERT_EQ(wide->dec.levels.size(), 1u);
+  const LevelResult& a = capped->dec.levels.front();
+  const LevelResult& b = wide->dec.levels.front();
+  EXPECT_LT(b.parts.size(), a.parts.size());
+  EXPECT_LT(b.cost, a.cost - 0.01);
+  expect_valid_levels(*wide, cell_volume(*wide));
 }
 
 // A real 3D BAG building (tile 5910, NL.IMBAG.Pand.0503100000018414, LoD2.2, 71 faces; CC BY 4.0
