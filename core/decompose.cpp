@@ -550,7 +550,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
       else if (o != r) up[std::max(o, r)] = std::min(o, r), r = std::min(o, r);
     }
     if (r == CellComplex::kNone) return;
-    first_owner[j] = work[j].cells.empty() ? 0 : prev_of.at(work[j].cells.front());
+    first_owner[j] = r;  // find() later gives the group's final root
   }
   std::map<uint32_t, std::vector<uint32_t>> parts_of, prevs_of;  // group root -> level parts / previous parts
   for (uint32_t j = 0; j < work.size(); ++j) parts_of[find(first_owner[j])].push_back(j);
@@ -734,12 +734,11 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       }
       std::vector<Work> prev = std::move(work);
       work = std::move(next);
-      const std::vector<Work> prev_parts = p.uncut_convexity < 1 ? prev : std::vector<Work>{};
-      if (p.revisit_boundaries && li > 0)
-        revisit_boundaries(pre, p, std::move(prev), work, ctx, n_max, delta0, deadline, level);
+      if (p.revisit_boundaries && li > 0)  // (takes its own copy of prev: the undo below needs it)
+        revisit_boundaries(pre, p, prev, work, ctx, n_max, delta0, deadline, level);
       if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
       if (p.merge_convex_parts) merge_convex_neighbours(pre, p, work, ctx, n_max, delta0);
-      if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev_parts, work, ctx, n_max, delta0);
+      if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev, work, ctx, n_max, delta0);
     } else {
       out.partial = true;
       if (out.reason.empty()) out.reason = "deadline reached before LoD " + std::to_string(level.lod);
