@@ -116,7 +116,7 @@ Params load_paper_config(const std::string& path, std::vector<std::string>* warn
   PaperReader r(j, path);
 
   Params p;
-  // The research code's defaults for its optional keys (algorithm.md §2.4).
+  // The research code's defaults for its optional keys (docs/config.md).
   p.dec.levels = {0.1, 0.01, 0.001};
   p.dec.max_children = -1;
   p.dec.same_vol_factor = 0.001;

@@ -1,4 +1,4 @@
-// Reading the MorphCut paper's per-sample `NAME.off_config.json` (algorithm.md §2.4) into Params.
+// Reading the MorphCut paper's per-sample `NAME.off_config.json` (docs/config.md) into Params.
 //
 // Keys map to Params fields (min_cut_factor -> dec.levels, max_angle -> pre.max_angle_deg, ...).
 // Optional keys the file omits take the research code's defaults (min_cut_factor

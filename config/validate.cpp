@@ -72,7 +72,7 @@ void validate_dec(const DecomposeParams& d) {
     const std::string key = "decompose.levels[" + std::to_string(i) + "]";
     const double l = d.levels[i];
     if (!std::isfinite(l) || !(l > 0 && l <= 1)) throw ConfigError(key, "must be in (0, 1]");
-    // Strictly decreasing: each level refines the previous one's parts (algorithm.md §2.4).
+    // Strictly decreasing: each level refines the previous one's parts (docs/algorithm.md §13).
     if (i > 0 && !(l < d.levels[i - 1]))
       throw ConfigError("decompose.levels", "must be strictly decreasing");
   }

@@ -214,10 +214,10 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       // Only hair-blocked planes are left, yet the cell is inconsistent (it was queued). The
       // hair rule guards the output grid; a plane whose hair-close vertices all keep at least
       // `min_gap` from it cannot make vertices that collapse there, so it still cuts a cell of
-      // which at least kHairCutShare is mislabelled. (A 3D BAG building kept a 7.6 m³ cell, 36%
-      // of it outside, over a 4.5 mm gap at δ = 47 mm.) Measured: 3D BAG tile Hausdorff mean
-      // 0.144 -> 0.135 m, all parts still valid. Cutting every such cell made sample18's parts
-      // less convex (0.976); tiny gaps (fitting noise, < 2 mm) did break tile parts.
+      // which at least kHairCutShare is mislabelled (otherwise such a cell can keep metres of air).
+      // Only badly mislabelled cells: cutting every such cell makes parts less convex, and gaps
+      // below min_gap (fitting noise) break parts when quantised (docs/algorithm.md §7.4,
+      // docs/design.md "Valid solids at every step").
       if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) continue;
       auto it = std::find_if(deferred.begin(), deferred.end(),
                              [&](uint32_t q) { return hair_gap(cx, c, planes[q], p.dist, outer) >= p.min_gap; });

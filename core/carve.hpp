@@ -1,4 +1,4 @@
-// Iterative, inconsistency-guided space carving (algorithm.md §3.3, architecture.md §3).
+// Iterative, inconsistency-guided space carving (docs/algorithm.md §7).
 //
 // The padded bounding box is split by the building's region planes, largest first; each cell is
 // labelled inside/outside by voting over sample points with the ray-casting oracle, and cells

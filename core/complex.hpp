@@ -1,4 +1,4 @@
-// The convex cell complex shared by carving and cutting (architecture.md §2).
+// The convex cell complex shared by carving and cutting (docs/algorithm.md §7.1).
 //
 // A BSP of the padded bounding box: every cell is a convex polytope; its boundary is a set of
 // convex *facets*, each facet separating exactly two cells (or a cell and the outside). The

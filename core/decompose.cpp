@@ -165,8 +165,8 @@ Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
   return pr;
 }
 
-// Merges parts smaller than v_min into the neighbour sharing the largest face area
-// (algorithm.md §6.8), smallest first; parts without a neighbour stay.
+// Merges parts smaller than v_min into a neighbour (docs/algorithm.md §14.2), smallest first;
+// parts without a neighbour they can join stay.
 void merge_tiny_parts(const CellComplex& cx, std::vector<Work>& parts, double v_min) {
   for (int guard = 0; guard < 10000; ++guard) {
     std::unordered_map<uint32_t, uint32_t> owner;
@@ -192,10 +192,9 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<Work>& parts, double v_
       continue;
     }
     // Among the neighbours whose union with the victim stays 2-manifold, the one whose convex
-    // hull grows least; then the largest shared area (the spec's rule, algorithm.md §6.8). A
-    // sliver can be long: merged into the neighbour it shares most area with, a 0.03 m³ wedge
-    // once took a 365 m³ box's convexity from 1.0 to 0.81 (3D BAG, NL.IMBAG.Pand.0503100000018414,
-    // with cvx_thresh 0.992).
+    // hull grows least; then the largest shared area (the research code's rule). A sliver can be
+    // long: merged into the neighbour it shares most area with, it can take a convex box's
+    // convexity far down (docs/design.md, "Tiny parts merge where the hull grows least").
     auto hull_of = [&](const std::vector<uint32_t>& cells) {
       std::vector<Vec3> pts;
       for (uint32_t c : cells)
@@ -248,15 +247,15 @@ struct LevelSpace {
 // Analysis only: generated candidate planes are not registered.
 const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
 
-// Change of a level's cost (algorithm.md §6.3 with the whole-building normalisers of §6.8) when
+// Change of a level's cost (docs/algorithm.md §11.1 with the whole-building normalisers of §11.3) when
 // its part count, ΣΔ and Σ E_all change by dn, d_delta and d_e.
 double level_cost_change(const DecomposeParams& p, double n_max, double delta0, double dn, double d_delta, double d_e) {
   const double d0 = delta0 > 0 ? delta0 : 1.0;
   return dn / n_max + (p.sigma - 1.0) * d_delta / d0 + p.sigma * d_e / (p.k * n_max);
 }
 
-// Merges neighbouring parts while that lowers the level's cost (algorithm.md §6.3 with the
-// whole-building normalisers of §6.8). The search is inflated (σ > 1), keeps only the best
+// Merges neighbouring parts while that lowers the level's cost (docs/algorithm.md §14.3, with the
+// whole-building normalisers of §11.3). The search is inflated (σ > 1), keeps only the best
 // children and cuts whole parts by unbounded planes, so it often leaves two convex pieces whose
 // union is still convex (a cut that also went through an unrelated wing), or nearly so. Merging
 // such a pair removes a part at no loss of convexity; a merge is only taken if the union has no
@@ -339,14 +338,15 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
 // unit (sample11: 16 parts -> 13). For every pair of neighbouring previous parts, the pieces of
 // this level along their common boundary (three or more, connected) are searched again as one
 // part with the `revisit_candidates` heaviest candidate planes; the result replaces them when it
-// has no more parts, no more significant concave lines, and lowers the level's cost (§6.3 with
-// the whole-building normalisers, as in merge_convex_neighbours). Each union is searched right
-// after its preparation; then the results are taken greedily by decrease over disjoint piece
-// sets, ties by pair order, so the outcome does not depend on the thread count.
-// Cost: preparing each union (refining its cells by its candidates) and its search: about 11%
-// more time on the paper samples for fewer parts on 6 of 16; on the 3D BAG tile 41% more CPU for
-// 1.7% fewer finest parts (3-piece unions are most of the work and few are improved; measured in
-// session 6, README "Measured"). Hence off by default.
+// has no more parts, no more significant concave lines, and lowers the level's cost (with the
+// whole-building normalisers, docs/algorithm.md §11.3, as in merge_convex_neighbours). Each
+// union is searched right after its preparation; then the results are taken greedily by
+// decrease over disjoint piece sets, ties by pair order, so the outcome does not depend on the
+// thread count.
+// Cost: preparing each union (refining its cells by its candidates) and its search, and the
+// refinement of a rejected union stays in the complex. 3-piece unions are most of the work and
+// few are improved, so the gain in parts is small for its time (docs/algorithm.md §14.1,
+// docs/design.md). Hence off by default.
 void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<Work> prev, std::vector<Work>& work,
                         const AnalysisContext& ctx, double n_max, double delta0, Clock::time_point deadline,
                         LevelResult& level) {
@@ -510,8 +510,8 @@ double reported_convexity(const PartInfo& info) {
 double weighted_convexity(const PartInfo& info) { return info.volume * reported_convexity(info); }
 
 // Undoes the cuts of a level that raise its whole-building cost (decompose.uncut_convexity).
-// Each part is searched with its own normalisers (algorithm.md §6.7), so a search can cut a
-// nearly convex part into pieces that raise the level's cost (§6.3 with the normalisers of §6.8);
+// Each part is searched with its own normalisers (docs/algorithm.md §11.2), so a search can cut a
+// nearly convex part into pieces that raise the level's cost (§11.1 with the normalisers of §11.3);
 // the paper's own finest levels often cost more than a coarser one (its sample9: 1.8865 at 1e-2,
 // 1.9231 at 1e-4; sample16: 1.6358 at 1e-3, 1.6510 at 1e-4).
 // After the level's merges, the previous parts are grouped so that every part of the level lies
@@ -520,8 +520,8 @@ double weighted_convexity(const PartInfo& info) { return info.volume * reported_
 // at least uncut_convexity convex and the level's volume-weighted convexity stays at least
 // cvx_thresh: once the building is as convex as the user asks of a part, a further cut has to pay
 // for itself in the objective. Coarse levels and visibly concave parts keep their cuts. Without
-// the per-part floor, tiny concave parts came back (convexity 0.18 on sample17) because the
-// whole-building objective barely sees them (README, "Cuts that raise the level's cost").
+// the per-part floor, small, clearly concave parts would come back because the whole-building
+// objective barely sees them (docs/algorithm.md §14.4, docs/design.md).
 void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& prev,
                         std::vector<Work>& work, const AnalysisContext& ctx, double n_max, double delta0) {
   const CellComplex& cx = *pre.complex;
@@ -614,7 +614,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
   work = std::move(next);
 }
 
-// Whole-building statistics of a level (normalised by the singleton cell R, algorithm.md §6.8).
+// Whole-building statistics of a level (normalised by the singleton cell R, docs/algorithm.md §11.3).
 void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& work,
                       const AnalysisContext& ctx, double n_max, double delta0, LevelResult& out) {
   const CellComplex& cx = *pre.complex;
@@ -688,12 +688,9 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     level.lod = p.levels[li];
     // The first level searches whole components: one search each, whose boundaries every later
     // level keeps, so it may choose among more candidate planes (first_level_candidates, opt-in).
-    // sample16: with the per-part cap of 12 its first level is 12 parts at cost 1.9423, with 48
-    // it is 9 at 1.8651 (the paper's: 9 at 1.8591), and its finest level 48 -> 43 parts, cost
-    // 1.6534 -> 1.5683. Not the default: the inflated search (sigma = 2, child cap) is not
-    // monotone in its candidates, and the first level's boundaries bind the finer levels. On the
-    // 3D BAG tile, 48 changes 6 of 429 buildings: finest cost lower on 2, higher on 4 (one has a
-    // far cheaper first level, 2.31 -> 1.55, and a dearer finest, 1.38 -> 1.44), 1,915 -> 1,936 parts.
+    // Not the default: the inflated search (sigma = 2, child cap) is not monotone in its
+    // candidates, and a cheaper first level can bind the finer levels badly (docs/algorithm.md
+    // §13, docs/design.md "A wider first level").
     DecomposeParams level_params = p;
     if (li == 0 && p.first_level_candidates >= 0) level_params.max_candidates = p.first_level_candidates;
     const AnalysisContext ctx = make_context(pre, level_params, level.lod);

@@ -1,10 +1,10 @@
 // MorphCut decomposition: the LoD driver over best-first branch-and-bound searches
-// (algorithm.md §4–§6, architecture.md §2).
+// (docs/algorithm.md §9–§14).
 //
 // For each LoD level (coarse to fine) every current part is searched independently: first
 // (sequentially) the part's cells are refined once by all of its candidate planes, so that
 // every cut inside the search is combinatorial; then the searches of a level run in parallel
-// (TBB), read-only on the shared complex. Tiny parts are merged after each level. The deadline
+// (TBB), read-only on the shared complex. The level passes (§14) follow each level. The deadline
 // is checked in the search and between levels: on expiry the best complete result so far is
 // returned and marked partial.
 #pragma once
@@ -28,7 +28,7 @@ struct PartResult {
 struct LevelResult {
   double lod = 0;
   std::vector<PartResult> parts;
-  double cost = 0, g = 0, h = 0;    // whole-building normalisation (algorithm.md §6.8)
+  double cost = 0, g = 0, h = 0;    // whole-building normalisation (docs/algorithm.md §11.3)
   double convexity = 0;             // volume-weighted mean of V/V_CH
   double min_convexity = 0;
   double mean_convexity = 0;        // unweighted mean (paper Eq. C.1)

@@ -1,4 +1,4 @@
-// Fidelity measure between two surfaces (architecture.md §3: input ↔ singleton cell), on
+// Fidelity measure between two surfaces (docs/algorithm.md §8: input ↔ singleton cell), on
 // triangle soups: open, non-manifold and self-intersecting inputs are fine.
 #pragma once
 #include "core/soup.hpp"

@@ -1,5 +1,5 @@
 // Convex hull of a point set (CGAL quickhull on doubles, EPICK): its volume and facet planes.
-// Measurement only, so the inexact-construction kernel is enough (algorithm.md §8 item 21).
+// Measurement only, so the inexact-construction kernel is enough (docs/algorithm.md §9.2).
 #pragma once
 #include <vector>
 

@@ -1,4 +1,4 @@
-// Inside/outside oracle over a triangle soup (algorithm.md §3.2): Embree ray casting, parity
+// Inside/outside oracle over a triangle soup (docs/algorithm.md §6): Embree ray casting, parity
 // of the number of distinct surface crossings along several upward rays, majority vote.
 // Rays go into the upper hemisphere (elevation 30°–90° about +z) so an open-bottom building
 // (walls and roof, no floor) still encloses its interior. The soup must be z-up.

@@ -1,5 +1,5 @@
 // Every algorithm parameter with its default. config/ fills this from YAML (or from the paper's
-// per-sample `NAME.off_config.json`); core/ only reads it. Names follow algorithm.md §2.4.
+// per-sample `NAME.off_config.json`); core/ only reads it. Reference: docs/config.md.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -53,7 +53,7 @@ struct DecomposeParams {
   double concave_thresh = 1.0;   // in units of π: keep lines with angle >= concave_thresh·π
   // Parts with V/V_CH >= cvx_thresh count as convex: no concave lines, Δ = 0 in the objective,
   // never cut, and neighbours whose union is that convex may merge. The research code reads
-  // this key but never uses it (algorithm.md §2.4); 1 = only exactly convex parts.
+  // this key but never uses it (docs/algorithm.md §9.6); 1 = only exactly convex parts.
   double cvx_thresh = 0.995;
   bool with_bisector = true;
   std::string cut_mode = "A";    // A, H, V, HV, HI, VI
@@ -62,7 +62,7 @@ struct DecomposeParams {
   int max_candidates = 12;       // top-K candidate planes per part by weight (0 = all)
   // The same cap for the first level's searches (whole components; -1 = max_candidates, 0 = all).
   // There is one such search per component and every later level only refines inside its parts,
-  // so a wider choice there can pay; measured mixed (decompose.cpp, decompose()), hence opt-in.
+  // so a wider choice there can pay; measured mixed (docs/design.md), hence opt-in.
   int first_level_candidates = -1;
   int64_t node_budget = 20000;   // expanded nodes per search
   bool significance_max = true;  // D(e) = max over samples (paper) instead of mean (RC)
@@ -74,11 +74,11 @@ struct DecomposeParams {
   int revisit_candidates = 4;
   bool merge_convex_parts = true;  // after each level, merge neighbours while the level's cost drops
   // After each level, undo cuts that raise the level's whole-building cost (the searches use
-  // per-part normalisers, algorithm.md §6.7) when every part put back is at least this convex and
+  // per-part normalisers, docs/algorithm.md §11.2) when every part put back is at least this convex and
   // the building stays at least cvx_thresh convex (decompose.cpp, refuse_costly_cuts); 1 = never.
   double uncut_convexity = 0.95;
-  // Concave-line grouping: true splits a plane pair's edges into connected chains (algorithm.md
-  // §4.2 REC); false groups every edge of a plane pair into one line, as the research code does.
+  // Concave-line grouping: true splits a plane pair's edges into connected chains (docs/algorithm.md
+  // §9.3); false groups every edge of a plane pair into one line, as the research code does.
   bool split_chains = true;
 };
 

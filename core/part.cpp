@@ -175,7 +175,7 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
   return out;
 }
 
-// Merges nearly coincident lines that share a plane (algorithm.md §4.2 step 2): a small step
+// Merges nearly coincident lines that share a plane (docs/algorithm.md §9.4): a small step
 // (convex + reflex within δ) becomes a ≈180° line that is then dropped; two shallow reflex
 // edges around a chamfer add up into one stronger line.
 void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
@@ -372,7 +372,7 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
     return info;
   }
 
-  // Candidate planes of the significant lines (algorithm.md §4.5).
+  // Candidate planes of the significant lines (docs/algorithm.md §10).
   std::vector<std::pair<uint32_t, double>> cands;  // plane id, accumulated weight
   auto add = [&](uint32_t id, double w) {
     for (auto& c : cands)

@@ -1,4 +1,4 @@
-// Parts as sets of convex cells (architecture.md §2).
+// Parts as sets of convex cells (docs/algorithm.md §9).
 //
 // A `CellSpace` fixes a set of live cells of the complex (a search root after its refinement by
 // the root's candidate planes, or a whole singleton component) and gives them local indices; a
@@ -40,7 +40,7 @@ struct CellSpace {
 
 CellSpace make_space(const CellComplex& cx, const std::vector<uint32_t>& cells);
 
-// A reflex "concave line" of a part (algorithm.md §4.2) with its significance weight (§4.3).
+// A reflex "concave line" of a part (docs/algorithm.md §9.3) with its significance weight (§9.5).
 struct ConcaveLine {
   uint32_t p1 = 0, p2 = 0;  // the two face planes
   Vec3 n1, n2;              // outward normals of the two faces

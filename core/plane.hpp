@@ -1,4 +1,4 @@
-// Planes and the plane registry: the single source of truth for plane ids (algorithm.md §2.5).
+// Planes and the plane registry: the single source of truth for plane ids (docs/algorithm.md §3.4).
 // Planes are stored with a unit normal in a canonical orientation (first non-zero normal
 // component positive), so a plane and its opposite share one id; which side is "outward" is
 // always derived from the B-rep, never from the stored orientation.
@@ -40,12 +40,12 @@ struct BBox {
   }
 };
 
-// "Same plane", box variant (algorithm.md §2.5): normals within `angle_rad` (unoriented) and
+// "Same plane", box variant (docs/algorithm.md §3.4): normals within `angle_rad` (unoriented) and
 // the 8 box corners projected on `a` lie within `dist` of `b`.
 bool same_plane_in_box(const Plane& a, const Plane& b, double angle_rad, double dist, const BBox& box);
 
 enum class PlaneClass : uint8_t { Vertical, Horizontal, Inclined };
-// Pitch classes of algorithm.md §4.4 with θa = angle_rad; `up` is the vertical axis.
+// Pitch classes of docs/algorithm.md §3.5 with θa = angle_rad; `up` is the vertical axis.
 PlaneClass classify_plane(const Plane& p, double angle_rad, const Vec3& up = {0, 0, 1});
 
 enum class PlaneOrigin : uint8_t { Region, Box, Candidate };

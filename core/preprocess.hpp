@@ -1,4 +1,4 @@
-// Preprocessing: rebuild a building as one watertight singleton cell (algorithm.md §2–§3).
+// Preprocessing: rebuild a building as one watertight singleton cell (docs/algorithm.md §2–§8).
 //
 // clean soup -> centre (and rotate to z-up) -> plane segmentation -> plane registry ->
 // Embree oracle -> iterative space carving of a convex cell complex -> interior cells,

@@ -1,4 +1,4 @@
-// Best-first branch and bound over cutting planes (algorithm.md §6.2–§6.6).
+// Best-first branch and bound over cutting planes (docs/algorithm.md §12).
 //
 // Nodes are sets of parts (ids into a per-search arena of analysed parts, deduplicated by
 // cell bitset); splits are memoised per (part, plane). The cost f = g + σ·h is a sum over

@@ -237,7 +237,7 @@ std::vector<Region> grow_regions(const Workspace& ws, const SegmentationParams& 
   return regions;
 }
 
-// Near-duplicate merge (algorithm.md §3.1 step 2, mesh variant of §2.5), largest regions first;
+// Near-duplicate merge (docs/algorithm.md §3.2, mesh variant of the same-plane test), largest regions first;
 // each region joins the best matching group (smallest max distance), which is then refit.
 std::vector<Region> merge_regions(const Workspace& ws, std::vector<Region> regions,
                                   const SegmentationParams& p) {

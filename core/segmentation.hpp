@@ -1,4 +1,4 @@
-// Plane segmentation of a building surface (algorithm.md §3.1): region growing over faces,
+// Plane segmentation of a building surface (docs/algorithm.md §3): region growing over faces,
 // near-duplicate plane merge, area filter. Our own grower (not CGAL 5.5's) so that the normal
 // test is unoriented (flipped faces join their wall) and the result is deterministic.
 #pragma once

@@ -1,4 +1,4 @@
-// Cleaning, centring and triangulation of an input polygon soup (algorithm.md §2.2).
+// Cleaning, centring and triangulation of an input polygon soup (docs/algorithm.md §2).
 // Real inputs are soups: duplicated and unused vertices, degenerate or repeated polygons,
 // non-planar and self-touching rings. Everything downstream (segmentation, the oracle,
 // Hausdorff) works on the cleaned mesh or on its triangles.

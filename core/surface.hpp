@@ -1,6 +1,6 @@
 // The boundary surface of a set of cells (a singleton cell or a part): its boundary facets,
 // coplanar neighbours merged into polygons with holes, collinear vertices dropped where no other
-// face needs them (architecture.md §2, "the output surface of a part").
+// face needs them (docs/algorithm.md §15).
 #pragma once
 #include <cstdint>
 #include <map>
