@@ -1,16 +1,19 @@
 // morphcut-city: decompose every building of a CityJSON city into convex parts (MorphCut).
 // The CLI only parses arguments, resolves defaults and maps outcomes to exit codes; the work is
 // pipeline::run_city (pipeline/run.hpp).
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "config/config.hpp"
 #include "io/errors.hpp"
 #include "pipeline/cli.hpp"
+#include "pipeline/html_report.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/subcommands.hpp"
@@ -50,6 +53,9 @@ const char* kFooter = R"(Outputs (written to the current directory, REPORT and S
            and per-level results for every building
   SUMMARY  <stem>.morphcut.csv: one RFC 4180 row per building for planners (parts per level,
            height, footprint, volume, convexities, part-graph statistics, centroid, lon/lat)
+  HTML     <stem>.morphcut.html beside the report (REPORT with .report.json -> .html): one
+           self-contained page that works offline (run summary, plots, plan of the footprints, 3D
+           view of each building's parts per level); `morphcut-city html REPORT.json` remakes it
   All outputs are atomic: they appear complete or not at all.
   CRASHES  OUTPUT.crashed: a building that crashes the process (a signal such as SIGSEGV or
            SIGABRT) is recorded there; the next run writes it through as failed with that
@@ -77,12 +83,13 @@ int main(int argc, char** argv) {
   // as ./validate).
   if (argc > 1 && std::string(argv[1]) == "validate") return mc::pipeline::validate_main(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "merge-reports") return mc::pipeline::merge_reports_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "html") return mc::pipeline::html_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
-  std::string input, config_path, output, report, summary, lod, cache_dir;
+  std::string input, config_path, output, report, summary, lod, cache_dir, html;
   int threads = -1;
   double timeout = -1;
-  bool quiet = false, no_report = false, no_summary = false;
+  bool quiet = false, no_report = false, no_summary = false, no_html = false;
   app.add_option("INPUT", input, "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), .gml/.xml[.gz] (CityGML 1.0/2.0/3.0 buildings), or - for CityJSONSeq on stdin")
       ->required();
   app.add_option("--config,-c", config_path, "YAML configuration (see config/lod.yaml; unknown keys are rejected)")
@@ -100,6 +107,8 @@ int main(int argc, char** argv) {
                  "reuse their earlier parts; safe to share between concurrent runs");
   app.add_flag("--no-report", no_report, "do not write the run report");
   app.add_flag("--no-summary", no_summary, "do not write the summary CSV");
+  app.add_option("--html", html, "HTML page of the run (default: the report's name with .report.json -> .html)");
+  app.add_flag("--no-html", no_html, "do not write the HTML page");
   app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
   app.set_version_flag("--version", MC_VERSION);
   app.footer(kFooter);
@@ -143,6 +152,27 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "morphcut-city: cache %s: %zu hits, %zu misses, %zu stored\n", cache_dir.c_str(),
                      r.cache.hits, r.cache.misses, r.cache.stored);
       for (const auto& p : r.reader_problems) std::fprintf(stderr, "morphcut-city: input problem: %s\n", p.c_str());
+    }
+    // The HTML page, from the outputs just written (timed: it should stay a few % of the run).
+    if (!no_html) {
+      const std::string page = !html.empty()         ? html
+                               : !opt.report.empty() ? mc::pipeline::html_path_for_report(opt.report)
+                                                     : stem + ".morphcut.html";
+      const auto t0 = std::chrono::steady_clock::now();
+      try {
+        const mc::pipeline::HtmlReportResult h = mc::pipeline::write_html_report(
+            opt.report, opt.report.empty() ? std::vector<std::string>{opt.output} : std::vector<std::string>{}, page);
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (!quiet)
+          std::fprintf(stderr,
+                       "morphcut-city: HTML page (%.2f MB, 3D for %zu of %zu buildings) in %.2f s, %.1f%% of the run's "
+                       "%.1f s -> %s\n",
+                       static_cast<double>(h.bytes) / 1e6, h.with_3d, h.buildings, s,
+                       r.wall_seconds > 0 ? 100.0 * s / r.wall_seconds : 0.0, r.wall_seconds, h.path.c_str());
+      } catch (const std::exception& e) {
+        // The run's outputs are complete; a page that cannot be made does not change the exit code.
+        std::fprintf(stderr, "morphcut-city: HTML page not written: %s\n", e.what());
+      }
     }
     return r.exit_code();
   } catch (const mc::ConfigError& e) {

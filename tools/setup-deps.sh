@@ -14,6 +14,7 @@ PKGS=(
   slurm-wlm munge  # tests/slurm: a one-node Slurm cluster on localhost for the job-array test
   clang libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and clang's sanitizers
   libgeos-dev libboost-filesystem-dev  # tools/val3dity/build.sh: val3dity, the reference validator the tests run (with cmake, g++, CGAL, Eigen above)
+  chromium  # tests/tools/html_browser_test.mjs: the HTML report in a real (headless) browser
 )
 
 missing=()
@@ -42,4 +43,6 @@ if [ "${MC_SKIP_NODE_TOOLS:-0}" != "1" ] && command -v npm >/dev/null 2>&1; then
       || echo "setup-deps: ajv-cli could not be installed; schema tests will be skipped" >&2
   fi
 fi
+# three.js (the HTML report's 3D view) and playwright-core (its browser test), pinned.
+bash "$(dirname "$0")/html/setup.sh"
 exit 0
