@@ -15,6 +15,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Polygon_2.h>
+#include <CGAL/linear_least_squares_fitting_3.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -22,6 +24,7 @@
 #include <list>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -71,7 +74,11 @@ class ErrorLog {
   }
   bool has(int code) const { return count_.count(code) > 0; }
   // Nothing logged except `code`.
-  bool only(int code) const { return count_.empty() || (count_.size() == 1 && count_.count(code)); }
+  bool only(std::initializer_list<int> codes) const {
+    for (const auto& [code, n] : count_)
+      if (std::find(codes.begin(), codes.end(), code) == codes.end()) return false;
+    return true;
+  }
   std::vector<SolidError> take() const {
     std::vector<SolidError> out;
     for (const auto& [code, msg] : first_) {
@@ -243,6 +250,72 @@ void triangulate_face(const std::vector<std::vector<uint32_t>>& rings, const std
   }
 }
 
+// The plane val3dity projects a face onto: the least-squares plane of the points (CGAL's fit
+// over points), with normal components below 1e-12 set to zero; its to_2d() gives the 2D frame.
+K::Plane_3 val3dity_plane(const std::vector<K::Point_3>& pts) {
+  K::Plane_3 p;
+  CGAL::linear_least_squares_fitting_3(pts.begin(), pts.end(), p, CGAL::Dimension_tag<0>());
+  const auto zero = [](double v) { return std::abs(v) < 1e-12 ? 0.0 : v; };
+  return K::Plane_3(zero(p.a()), zero(p.b()), zero(p.c()), p.d());
+}
+
+// val3dity's ring rule in a face's plane (104): each projected ring is a simple polygon with area.
+bool projected_rings_simple(const std::vector<std::vector<uint32_t>>& rings, const std::vector<K::Point_3>& local) {
+  std::vector<K::Point_3> all;
+  for (const auto& r : rings)
+    for (uint32_t v : r) all.push_back(local[v]);
+  const K::Plane_3 pl = val3dity_plane(all);
+  for (const auto& r : rings) {
+    CGAL::Polygon_2<K> pg;
+    for (uint32_t v : r) pg.push_back(pl.to_2d(local[v]));
+    if (!pg.is_simple() || pg.orientation() == CGAL::COLLINEAR) return false;
+  }
+  return true;
+}
+
+// val3dity's normals rule (204): the face triangulated (constrained Delaunay) in the least-squares
+// plane of its outer ring; the largest angle between the first triangle's normal and another's.
+// Negative when the rings cannot be triangulated (their crossing is reported elsewhere).
+double triangle_normals_deviation_deg(const std::vector<std::vector<uint32_t>>& rings, const std::vector<K::Point_3>& local) {
+  if (rings.size() == 1 && rings[0].size() == 3) return 0;
+  std::vector<K::Point_3> outer;
+  for (uint32_t v : rings[0]) outer.push_back(local[v]);
+  const K::Plane_3 pl = val3dity_plane(outer);
+  CDT cdt;
+  try {
+    for (const auto& ring : rings) {
+      std::vector<CDT::Vertex_handle> vh;
+      for (uint32_t id : ring) {
+        CDT::Vertex_handle h = cdt.insert(pl.to_2d(local[id]));
+        h->info() = id;
+        vh.push_back(h);
+      }
+      for (size_t i = 0; i < vh.size(); ++i)
+        if (vh[i] != vh[(i + 1) % vh.size()]) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
+    }
+  } catch (const CDT::Intersection_of_constraints_exception&) {
+    return -1;
+  }
+  mark_domains(cdt);
+  std::optional<K::Vector_3> first;
+  double worst = 0;
+  for (auto fh : cdt.finite_face_handles()) {
+    if (fh->info().nesting % 2 != 1) continue;
+    const K::Point_3 &a = local[fh->vertex(0)->info()], &b = local[fh->vertex(1)->info()], &c = local[fh->vertex(2)->info()];
+    K::Vector_3 n = CGAL::cross_product(b - a, c - a);
+    const double len = std::sqrt(n.squared_length());
+    if (!(len > 0)) return 180;  // a triangle without area: its normal is anything
+    n = n / len;
+    if (!first) {
+      first = n;
+      continue;
+    }
+    const double angle = std::atan2(std::sqrt(CGAL::cross_product(*first, n).squared_length()), *first * n) * 180 / M_PI;
+    worst = std::max(worst, angle);
+  }
+  return worst;
+}
+
 Mesh to_mesh(const TriangleShell& s, bool& ok) {
   std::vector<K::Point_3> points;
   for (const auto& p : s.points) points.emplace_back(p.x, p.y, p.z);
@@ -329,6 +402,7 @@ const char* solid_error_name(int code) {
     case solid_code::kRingCollapsed: return "RING_COLLAPSED";
     case solid_code::kIntersectionRings: return "INTERSECTION_RINGS";
     case solid_code::kNonPlanarPolygon: return "NON_PLANAR_POLYGON_DISTANCE_PLANE";
+    case solid_code::kNonPlanarNormals: return "NON_PLANAR_POLYGON_NORMALS_DEVIATION";
     case solid_code::kOrientationRingsSame: return "ORIENTATION_RINGS_SAME";
     case solid_code::kTooFewPolygons: return "TOO_FEW_POLYGONS";
     case solid_code::kShellNotClosed: return "SHELL_NOT_CLOSED";
@@ -341,7 +415,22 @@ const char* solid_error_name(int code) {
   }
 }
 
-SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol) {
+bool triangulate_polygon(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
+                         std::vector<std::array<uint32_t, 3>>& out) {
+  if (rings.empty() || rings[0].size() < 3) return false;
+  const Vec3 n = newell(rings[0], pts);
+  if (!(norm(n) > 0)) return false;
+  ErrorLog log;
+  const size_t before = out.size();
+  triangulate_face(rings, pts, n, 0, log, out);
+  if (!log.only({})) {
+    out.resize(before);
+    return false;
+  }
+  return out.size() > before;
+}
+
+SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, bool measures) {
   SolidCheck out;
   ErrorLog log;
   std::vector<Vec3>& pts = out.shell.points;
@@ -373,14 +462,40 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol) {
         ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
         while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
       }
+      if (repeats) out.bad_faces.emplace_back(fi, solid_code::kConsecutivePointsSame);
       if (ring.size() < 3) {
         log.add(solid_code::kTooFewPoints, where + " has " + std::to_string(ring.size()) + " distinct points");
+        out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
         face_ok = false;
         continue;
       }
       rings.push_back(std::move(ring));
     }
     if (!face_ok || rings.empty()) continue;
+    if (tol.normals_deg > 0) {
+      // val3dity's polygon rules, in coordinates local to the face (city coordinates are large).
+      const Vec3 o = pts[rings[0][0]];
+      std::vector<K::Point_3> local(pts.size());
+      for (const auto& ring : rings)
+        for (uint32_t v : ring) local[v] = K::Point_3(pts[v].x - o.x, pts[v].y - o.y, pts[v].z - o.z);
+      const std::string where = "face " + std::to_string(fi);
+      if (rings.size() == 1 && rings[0].size() == 3 && CGAL::collinear(local[rings[0][0]], local[rings[0][1]], local[rings[0][2]])) {
+        log.add(solid_code::kRingSelfIntersection, where + ": a triangle collapsed to a line");
+        out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
+        continue;
+      }
+      if (!projected_rings_simple(rings, local)) {
+        log.add(solid_code::kRingSelfIntersection, where + ": a ring touches or crosses itself, or has no area, in the face's plane");
+        out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
+        continue;
+      }
+      const double dev = triangle_normals_deviation_deg(rings, local);
+      if (dev > tol.normals_deg) {
+        log.add(solid_code::kNonPlanarNormals, where + ": its triangles' normals differ by " + fmt(dev) + " degrees (tolerance " +
+                                                   fmt(tol.normals_deg) + ")");
+        out.bad_faces.emplace_back(fi, solid_code::kNonPlanarNormals);
+      }
+    }
     // Polygon (2xx): planarity against the least-squares plane of all its points.
     std::vector<Vec3> fp;
     for (const auto& ring : rings)
@@ -407,8 +522,10 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol) {
       }
       if (crosses) log.add(solid_code::kRingSelfIntersection, "face " + std::to_string(fi) + ": a ring crosses itself");
       else log.add(solid_code::kRingCollapsed, "face " + std::to_string(fi) + ": the outer ring has no area");
+      out.bad_faces.emplace_back(fi, crosses ? solid_code::kRingSelfIntersection : solid_code::kRingCollapsed);
       continue;
     }
+    if (worst > tol.planarity) out.bad_faces.emplace_back(fi, solid_code::kNonPlanarPolygon);
     if (worst > tol.planarity)
       log.add(solid_code::kNonPlanarPolygon, "face " + std::to_string(fi) + ": a point lies " + fmt(worst) +
                                                  " m from the face's plane (tolerance " + fmt(tol.planarity) + " m)");
@@ -425,11 +542,13 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol) {
   for (size_t fi = 0; fi < faces.size(); ++fi) triangulate_face(faces[fi], pts, normals[fi], fi, log, out.shell.triangles);
 
   // Non-planarity within reason does not stop the shell checks (the faces are triangulated).
-  const bool topology_ok = log.only(solid_code::kNonPlanarPolygon);
+  const bool topology_ok = log.only({solid_code::kNonPlanarPolygon, solid_code::kNonPlanarNormals});
   // Hull and convexity are measures, wanted whatever the validity.
-  const Hull hull = convex_hull(pts);
-  out.hull_volume = hull.volume;
-  out.hull_facets = hull.facets;
+  if (measures) {
+    const Hull hull = convex_hull(pts);
+    out.hull_volume = hull.volume;
+    out.hull_facets = hull.facets;
+  }
   if (!topology_ok) {
     out.errors = log.take();
     return out;

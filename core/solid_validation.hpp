@@ -23,7 +23,7 @@ struct SolidError {
 // val3dity's codes used here.
 namespace solid_code {
 constexpr int kTooFewPoints = 101, kConsecutivePointsSame = 102, kRingSelfIntersection = 104,
-              kRingCollapsed = 105, kIntersectionRings = 201, kNonPlanarPolygon = 203,
+              kRingCollapsed = 105, kIntersectionRings = 201, kNonPlanarPolygon = 203, kNonPlanarNormals = 204,
               kOrientationRingsSame = 208, kTooFewPolygons = 301, kShellNotClosed = 302,
               kNonManifoldCase = 303, kPolygonWrongOrientation = 304, kMultipleComponents = 305,
               kShellSelfIntersection = 306, kAllPolygonsWrongOrientation = 307;
@@ -33,7 +33,15 @@ const char* solid_error_name(int code);
 struct SolidTolerances {
   double snap = 1e-6;       // vertices closer than this are one vertex (m)
   double planarity = 1e-3;  // max distance of a face's points to its least-squares plane (m)
+  // Max angle (degrees) between the normals of the triangles of one face, triangulated in its
+  // least-squares plane (val3dity's 204 rule); 0 = not checked. With it, rings are also checked
+  // for simplicity in that plane's projection (val3dity's 104 rule: a ring touching itself at a
+  // vertex, or collapsed to a line). docs/output-format.md §Validity.
+  double normals_deg = 0;
 };
+// val3dity's default tolerances, made slightly stricter where it decides by a strict comparison
+// on rounded coordinates: vertices up to 1 mm apart are one vertex. Every written part passes them.
+inline SolidTolerances val3dity_tolerances() { return {0.001 * (1 + 1e-6), 0.01, 20}; }
 
 // The shell as triangles over merged vertices (faces triangulated in their plane, holes kept),
 // oriented like the input faces.
@@ -44,6 +52,9 @@ struct TriangleShell {
 
 struct SolidCheck {
   std::vector<SolidError> errors;  // empty = valid
+  // Input faces (indices into PolygonMesh::faces) that break a face rule (1xx, 2xx), with the
+  // code: what a repair has to redo.
+  std::vector<std::pair<size_t, int>> bad_faces;
   // A closed, 2-manifold, outward-oriented shell without self-intersection (its faces may be
   // non-planar beyond the tolerance): volume and common_volume are meaningful.
   bool closed_manifold = false;
@@ -57,7 +68,13 @@ struct SolidCheck {
   bool valid() const { return errors.empty(); }
 };
 
-SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol = {});
+// `measures` = false skips the convex hull (hull_volume, hull_facets, convexity stay 0).
+SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol = {}, bool measures = true);
+
+// One polygon (outer ring and holes, indices into `pts`) triangulated in its plane (constrained
+// Delaunay, holes left out); triangles turn like the outer ring. False when its rings cross.
+bool triangulate_polygon(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
+                         std::vector<std::array<uint32_t, 3>>& out);
 
 // What two solids with closed_manifold have in common: its volume (m³; 0 when they only touch)
 // and surface area (m²; 2 x volume / area is the mean thickness, which tells a sliver from a real

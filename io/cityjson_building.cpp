@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 #include <tuple>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -330,6 +331,29 @@ BuildingInput extract_building(const Feature& f, const Header& h, const std::str
   }
   out.lod = chosen;
   return out;
+}
+
+size_t remove_geometries_at_lod(Feature& f, const Header& h, const std::string& lod) {
+  if (lod.empty()) return 0;
+  std::map<std::string, std::vector<size_t>> doomed;  // object -> geometry indices
+  for (const auto& c : candidates(f, h, nullptr)) {
+    const bool same = c.lod == lod || (lod_value(c.lod) == lod_value(lod) && std::isfinite(lod_value(lod)));
+    if (!same) continue;
+    const json& obj = f.objects[c.object_id];
+    const auto a = obj.find("attributes");
+    if (a != obj.end() && a->is_object() && a->contains("morphcut_level")) continue;
+    doomed[c.object_id].push_back(c.index);
+  }
+  size_t removed = 0;
+  for (auto& [id, indices] : doomed) {
+    json& geoms = f.objects[id]["geometry"];
+    std::sort(indices.rbegin(), indices.rend());
+    for (size_t i : indices) {
+      geoms.erase(i);
+      ++removed;
+    }
+  }
+  return removed;
 }
 
 }  // namespace mc::io

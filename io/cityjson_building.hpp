@@ -30,4 +30,10 @@ BuildingInput extract_building(const Feature& f, const Header& h, const std::str
 // The distinct LoDs of the building's surface geometries, in first-seen order.
 std::vector<std::string> building_lods(const Feature& f, const Header& h);
 
+// Removes the geometries extract_building(f, h, lod) decomposes (`lod` as it reported it, e.g.
+// "2.2"; numerically equal LoDs alike) from the Building and its BuildingParts, except from
+// BuildingParts a morphcut run added (attribute `morphcut_level`). A level output puts that
+// level's parts in their place (docs/output-format.md). Returns the number removed.
+size_t remove_geometries_at_lod(Feature& f, const Header& h, const std::string& lod);
+
 }  // namespace mc::io

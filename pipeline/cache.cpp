@@ -25,7 +25,7 @@ using SteadyClock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr int kFormat = 1;
+constexpr int kFormat = 2;  // 2: parts checked and repaired on the output grid (docs/output-format.md)
 
 // Settings that do not change a complete result: worker threads, buildings in flight, logging
 // (outputs are byte-identical for any thread count). Everything else in the effective config is

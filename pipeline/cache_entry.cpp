@@ -44,7 +44,8 @@ json outcome_to_json(const BuildingOutcome& b) {
                       {"truncated", l.truncated},
                       {"fallback", l.fallback},
                       {"max_degree", l.max_degree},
-                      {"end_parts", l.end_parts}});
+                      {"end_parts", l.end_parts},
+                      {"cluster_steps", l.cluster_steps}});
   const Sizes& s = b.size;
   const Measures& m = b.measures;
   json centroid = nullptr;
@@ -69,7 +70,9 @@ json outcome_to_json(const BuildingOutcome& b) {
             {"concave_edges", s.concave_edges},
             {"parts_written", s.parts_written},
             {"output_vertices_added", s.output_vertices_added},
-            {"dropped_faces", s.dropped_faces}}},
+            {"dropped_faces", s.dropped_faces},
+            {"parts_repaired", s.parts_repaired},
+            {"split_faces", s.split_faces}}},
           {"measures",
            {{"height", num(m.height)},
             {"footprint_area", num(m.footprint_area)},
@@ -105,6 +108,7 @@ void outcome_from_json(const json& j, BuildingOutcome& b) {
     l.fallback = lj.at("fallback").get<std::string>();
     l.max_degree = lj.at("max_degree").get<int>();
     l.end_parts = lj.at("end_parts").get<int>();
+    l.cluster_steps = lj.at("cluster_steps").get<int>();
     b.levels.push_back(std::move(l));
   }
   const json& sj = j.at("sizes");
@@ -123,6 +127,8 @@ void outcome_from_json(const json& j, BuildingOutcome& b) {
   s.parts_written = sj.at("parts_written").get<size_t>();
   s.output_vertices_added = sj.at("output_vertices_added").get<size_t>();
   s.dropped_faces = sj.at("dropped_faces").get<size_t>();
+  s.parts_repaired = sj.at("parts_repaired").get<size_t>();
+  s.split_faces = sj.at("split_faces").get<size_t>();
   const json& mj = j.at("measures");
   Measures& m = b.measures;
   m.height = get_opt(mj, "height");

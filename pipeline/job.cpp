@@ -13,6 +13,7 @@
 #include "core/preprocess.hpp"
 #include "io/cityjson_building.hpp"
 #include "io/cityjson_common.hpp"
+#include "pipeline/level_views.hpp"
 #include "pipeline/measures.hpp"
 #include "pipeline/part_objects.hpp"
 
@@ -114,8 +115,9 @@ struct EncodedLevel {
   std::vector<StagedPart> staged;
   std::vector<PolygonMesh> meshes;
   LevelOutcome lv;      // the geometric fields; the search fields are the caller's
-  size_t dropped_faces = 0;
-  std::string defect;   // non-empty: a part is not a closed solid, and nothing else is valid
+  size_t dropped_faces = 0, repaired_parts = 0, split_faces = 0;
+  int cluster_steps = 0;  // the vertex clustering the level needed (grid steps; 0 = none)
+  std::string defect;     // non-empty: a part fails the checks, and nothing of the level is kept
 };
 
 EncodedLevel encode_level(const std::string& building, size_t i, double threshold, const std::vector<PartResult>& parts,
@@ -136,11 +138,13 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
     if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton parts
     const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
     EncodedSolid solid = encode_solid(mesh, lod, version, pool);
-    if (std::string defect = closed_shell_defect(solid.shell); !defect.empty()) {
-      e.defect = "part " + std::to_string(j) + " is not a closed 2-manifold (" + defect + ")";
+    if (!solid.defect.empty()) {
+      e.defect = "part " + std::to_string(j) + " is invalid on the output grid (" + solid.defect + ")";
       return e;
     }
     e.dropped_faces += solid.dropped_faces;
+    e.repaired_parts += solid.repaired;
+    e.split_faces += solid.split_faces;
     json neighbours = json::array();
     for (uint32_t n : part.neighbours) neighbours.push_back(part_id(building, i, n));
     const int degree = static_cast<int>(part.neighbours.size());
@@ -167,6 +171,32 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   e.lv.convexity = total_volume > 0 ? weighted_cvx / total_volume : 0.0;
   e.lv.mean_convexity = sum_cvx / static_cast<double>(parts.size());
   e.lv.min_convexity = min_cvx;
+  return e;
+}
+
+// A level's parts encoded on the output grid; when a part stays invalid after its own repairs
+// (pipeline/part_repair.hpp), the level's vertices are clustered ever more coarsely (vertices
+// within 1, 2, then 4 grid steps become one) and the whole level is encoded again, so that every
+// part sharing a moved vertex moves with it. On failure the pool is back at its mark.
+EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
+                                  const std::vector<PartResult>& parts, const Preprocessed& pre, const std::string& lod,
+                                  const std::string& version, VertexPool& pool) {
+  const size_t mark = pool.mark();
+  EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool);
+  if (e.defect.empty() || !pool.can_cluster()) return e;
+  const std::string first = e.defect;
+  for (int steps : {1, 2, 4}) {
+    pool.rollback(mark);
+    pool.cluster(steps, mark);
+    e = encode_level(building, i, threshold, parts, pre, lod, version, pool);
+    pool.cluster(0, 0);
+    if (e.defect.empty()) {
+      e.cluster_steps = steps;
+      return e;
+    }
+  }
+  pool.rollback(mark);
+  e.defect = first;
   return e;
 }
 
@@ -227,7 +257,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     const std::vector<PartResult>* parts = src.result ? &src.result->parts : &singleton;
     std::string fallback = src.fallback;
     const size_t mark = pool.mark();
-    EncodedLevel e = encode_level(out.id, i, p.dec.levels[i], *parts, pre, lod, h.version, pool);
+    EncodedLevel e = encode_level_on_grid(out.id, i, p.dec.levels[i], *parts, pre, lod, h.version, pool);
     if (!e.defect.empty()) {
       // A part that is not a valid solid (core's part mesh has a non-manifold edge) is never
       // written. Stand-ins, in order: the previous written level, a finer level (more parts,
@@ -241,7 +271,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
       if (parts != &singleton) stand_ins.emplace_back(&singleton, "singleton");
       std::string tried;
       for (const auto& [alt, name] : stand_ins) {
-        e = encode_level(out.id, i, p.dec.levels[i], *alt, pre, lod, h.version, pool);
+        e = encode_level_on_grid(out.id, i, p.dec.levels[i], *alt, pre, lod, h.version, pool);
         if (e.defect.empty()) {
           fallback = name;
           parts = alt;
@@ -268,6 +298,9 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
       lv.truncated = r.truncated;
     }
     out.size.dropped_faces += e.dropped_faces;
+    out.size.parts_repaired += e.repaired_parts;
+    out.size.split_faces += e.split_faces;
+    lv.cluster_steps = e.cluster_steps;
     for (auto& s : e.staged) staged.push_back(std::move(s));
     if (first_level_meshes.empty()) first_level_meshes = std::move(e.meshes);
     out.levels.push_back(std::move(lv));
@@ -322,27 +355,6 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   }
 }
 
-// Drops vertices no object refers to any more (those of removed parts), keeping the order of the
-// others, so a re-run writes the same vertex list as the first run.
-void compact_vertices(mc::io::Feature& f) {
-  std::vector<int64_t> remap(f.vertices.size(), -1);
-  mc::io::for_each_vertex_ref(f.objects, [&](json& leaf, const std::string&, const std::string&) {
-    if (leaf.is_number_integer() && leaf.get<int64_t>() >= 0 && leaf.get<uint64_t>() < remap.size())
-      remap[leaf.get<size_t>()] = 0;
-  });
-  std::vector<Vec3> kept;
-  for (size_t i = 0; i < remap.size(); ++i)
-    if (remap[i] == 0) {
-      remap[i] = static_cast<int64_t>(kept.size());
-      kept.push_back(f.vertices[i]);
-    }
-  mc::io::for_each_vertex_ref(f.objects, [&](json& leaf, const std::string&, const std::string&) {
-    if (leaf.is_number_integer() && leaf.get<int64_t>() >= 0 && leaf.get<uint64_t>() < remap.size())
-      leaf = remap[leaf.get<size_t>()];
-  });
-  f.vertices = std::move(kept);
-}
-
 }  // namespace
 
 size_t strip_previous_parts(mc::io::Feature& f) {
@@ -353,8 +365,7 @@ size_t strip_previous_parts(mc::io::Feature& f) {
     json kept = json::array();
     for (const auto& c : *ch) {
       auto obj = c.is_string() ? f.objects.find(c.get<std::string>()) : f.objects.end();
-      const bool ours = obj != f.objects.end() && obj->is_object() && obj->contains("attributes") &&
-                        (*obj)["attributes"].is_object() && (*obj)["attributes"].contains("morphcut_level");
+      const bool ours = obj != f.objects.end() && is_morphcut_part(*obj);
       if (ours) {
         f.objects.erase(obj);
         ++removed;
@@ -366,7 +377,7 @@ size_t strip_previous_parts(mc::io::Feature& f) {
   }
   if (auto a = b->find("attributes"); a != b->end() && a->is_object())
     for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff",
-                          "morphcut_cell_volume"})
+                          "morphcut_cell_volume", "morphcut_level"})
       a->erase(k);
   if (removed) compact_vertices(f);
   return removed;

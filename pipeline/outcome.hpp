@@ -31,6 +31,9 @@ struct LevelOutcome {
   std::string fallback;
   int max_degree = 0;        // part adjacency graph
   int end_parts = 0;         // parts with exactly one neighbour
+  // Vertices within this many output grid steps were made one so that every part passes the
+  // checks (0 = none needed; docs/output-format.md §Validity).
+  int cluster_steps = 0;
 };
 
 struct Timings {
@@ -43,6 +46,7 @@ struct Sizes {
   bool cell_closed = false, cell_manifold = false;  // the singleton cell (preprocessing)
   int concave_edges = 0;
   size_t parts_written = 0, output_vertices_added = 0, dropped_faces = 0;
+  size_t parts_repaired = 0, split_faces = 0;  // parts that needed a repair on the output grid
 };
 
 // Whole-building measures for the planners' CSV.

@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
+
+#include "pipeline/part_repair.hpp"
 
 namespace mc::pipeline {
 
@@ -24,6 +27,20 @@ int64_t VertexPool::add(const Vec3& v) {
       r[i] = static_cast<double>(q[i]) * s[i] + o[i];
     }
     snapped = {r[0], r[1], r[2]};
+    if (cluster_ > 0) {
+      // The nearest vertex of this level within the cluster box (smallest id on a tie).
+      int64_t best = -1;
+      double best_d = std::numeric_limits<double>::infinity();
+      for (int64_t dx = -cluster_; dx <= cluster_; ++dx)
+        for (int64_t dy = -cluster_; dy <= cluster_; ++dy)
+          for (int64_t dz = -cluster_; dz <= cluster_; ++dz) {
+            auto it = index_.find({q[0] + dx, q[1] + dy, q[2] + dz});
+            if (it == index_.end() || it->second < static_cast<int64_t>(cluster_from_)) continue;
+            const double d = static_cast<double>(dx * dx + dy * dy + dz * dz);
+            if (d < best_d || (d == best_d && it->second < best)) best = it->second, best_d = d;
+          }
+      if (best >= 0) return best;
+    }
   } else {
     // No transform: dedupe exact duplicates only (bit patterns of the doubles).
     for (int i = 0; i < 3; ++i) {
@@ -50,25 +67,35 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
     if (vid[v] < 0) vid[v] = pool.add(part.vertices[v]);
     return vid[v];
   };
-  json surfaces = json::array(), values = json::array(), boundaries = json::array();
-  std::vector<int> surface_of_label(part.semantic_labels.size(), -1);
+  std::vector<GridFace> faces;
   for (const Polygon& f : part.faces) {
-    std::vector<std::vector<int64_t>> rings;
+    GridFace g;
+    g.semantic = f.semantic;
     for (size_t r = 0; r < f.rings.size(); ++r) {
       std::vector<int64_t> ring;
       for (uint32_t v : f.rings[r]) {
         if (v >= part.vertices.size()) throw std::runtime_error("part mesh refers to a missing vertex");
-        const int64_t g = id_of(v);
-        if (ring.empty() || ring.back() != g) ring.push_back(g);
+        const int64_t id = id_of(v);
+        if (ring.empty() || ring.back() != id) ring.push_back(id);
       }
       while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
-      if (ring.size() >= 3) rings.push_back(std::move(ring));
+      if (ring.size() >= 3) g.rings.push_back(std::move(ring));
       else if (r == 0) break;  // the outer ring collapsed: the whole face is gone
     }
-    if (rings.empty()) {
+    if (g.rings.empty()) {
       ++out.dropped_faces;
       continue;
     }
+    faces.push_back(std::move(g));
+  }
+  PartRepair checked = check_and_repair(std::move(faces), pool.vertices());
+  out.defect = std::move(checked.defect);
+  out.repaired = checked.repaired;
+  out.split_faces = checked.split_faces;
+
+  json surfaces = json::array(), values = json::array(), boundaries = json::array();
+  std::vector<int> surface_of_label(part.semantic_labels.size(), -1);
+  for (GridFace& f : checked.faces) {
     json value = nullptr;
     if (f.semantic >= 0 && static_cast<size_t>(f.semantic) < part.semantic_labels.size()) {
       int& s = surface_of_label[f.semantic];
@@ -79,8 +106,8 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
       value = s;
     }
     values.push_back(value);
-    boundaries.push_back(rings);
-    out.shell.push_back(std::move(rings));
+    boundaries.push_back(f.rings);
+    out.shell.push_back(std::move(f.rings));
   }
   out.geometry = {{"type", "Solid"}};
   if (version == "1.0") out.geometry["lod"] = std::strtod(lod.c_str(), nullptr);

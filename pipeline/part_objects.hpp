@@ -1,7 +1,9 @@
 // Part meshes -> CityJSON: a closed `Solid` geometry with semantic surfaces, its vertices
 // appended to the feature. Vertices are snapped to the output's quantisation grid (the header's
-// `transform`) and deduplicated here, not later in the writer, so that what is checked for
-// closedness is exactly what ends up in the file.
+// `transform`) and deduplicated here, not later in the writer, so that what is checked is exactly
+// what ends up in the file: every part is checked after quantisation by val3dity's rules at its
+// default tolerances, and repaired when it fails them (pipeline/part_repair.hpp,
+// docs/output-format.md §Validity).
 #pragma once
 #include <cstdint>
 #include <map>
@@ -25,17 +27,34 @@ class VertexPool {
   // Undo every add() since mark() (a level that turned out invalid leaves no vertices behind).
   size_t mark() const { return out_.size(); }
   void rollback(size_t mark);
+  // Vertex clustering: from now on a vertex within `steps` grid steps (Chebyshev) of a vertex
+  // added since `mark` is that vertex (0 = exact grid duplicates only). Needs a transform.
+  void cluster(int steps, size_t mark) { cluster_ = steps, cluster_from_ = mark; }
+  bool can_cluster() const { return t_.present; }
+  const std::vector<Vec3>& vertices() const { return out_; }
 
  private:
   std::vector<Vec3>& out_;
   mc::io::Transform t_;
   std::map<std::tuple<int64_t, int64_t, int64_t>, int64_t> index_;
+  int cluster_ = 0;
+  size_t cluster_from_ = 0;
+};
+
+// A part's boundary on the output grid: faces of rings of VertexPool ids.
+struct GridFace {
+  std::vector<std::vector<int64_t>> rings;
+  int32_t semantic = -1;  // into the part mesh's semantic_labels
 };
 
 struct EncodedSolid {
   nlohmann::json geometry;  // {"type":"Solid","lod":...,"boundaries":...,"semantics":...}
-  Shell shell;              // the boundaries as written (for the closedness check)
+  Shell shell;              // the boundaries as written
   size_t dropped_faces = 0; // faces that collapsed to nothing on the grid
+  size_t split_faces = 0;   // faces written as several polygons to pass the checks
+  bool repaired = false;    // the part needed a repair to pass the checks
+  // Empty when the written solid passes every check; otherwise why not (nothing may be written).
+  std::string defect;
 };
 
 // `lod` is written as a string, except for CityJSON 1.0 (numeric lods).

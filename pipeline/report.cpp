@@ -48,6 +48,7 @@ json building_report(const BuildingOutcome& b) {
                {"max_degree", l.max_degree},
                {"end_parts", l.end_parts}};
     if (!l.fallback.empty()) lj["fallback"] = l.fallback;
+    if (l.cluster_steps) lj["cluster_steps"] = l.cluster_steps;
     levels.push_back(std::move(lj));
   }
   json level_secs = json::array();
@@ -69,7 +70,9 @@ json building_report(const BuildingOutcome& b) {
                 {"concave_edges", b.size.concave_edges},
                 {"parts_written", b.size.parts_written},
                 {"vertices_added", b.size.output_vertices_added},
-                {"dropped_faces", b.size.dropped_faces}};
+                {"dropped_faces", b.size.dropped_faces},
+                {"parts_repaired", b.size.parts_repaired},
+                {"split_faces", b.size.split_faces}};
   int64_t nodes = 0;
   for (const auto& l : b.levels) nodes += l.nodes_expanded;
   j["nodes_expanded"] = nodes;

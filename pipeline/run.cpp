@@ -29,6 +29,7 @@
 #include "pipeline/crash_guard.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/job.hpp"
+#include "pipeline/level_views.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/sha256.hpp"
@@ -171,11 +172,15 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   if (!opt.cache_dir.empty()) cache = std::make_unique<BuildingCache>(opt.cache_dir, header, params, rc);
   const mc::io::CrsTransformer crs(header.crs);
 
-  // All outputs are opened first, so a bad path fails before any work is done.
+  // All outputs are opened first, so a bad path fails before any work is done: the annotated
+  // input and one city per written level (pipeline/level_views.hpp, docs/output-format.md).
   mc::io::CityJsonWriter writer(opt.output, header);
   std::vector<double> written_levels;
   for (size_t i = 0; i < params.dec.levels.size(); ++i)
     if (writes_level(rc, i)) written_levels.push_back(params.dec.levels[i]);
+  std::vector<std::unique_ptr<mc::io::CityJsonWriter>> level_writers;
+  for (double t : written_levels)
+    level_writers.push_back(std::make_unique<mc::io::CityJsonWriter>(level_output_path(opt.output, t), header));
   std::unique_ptr<ReportWriter> report;
   std::unique_ptr<SummaryWriter> summary;
   if (!opt.report.empty()) report = std::make_unique<ReportWriter>(opt.report);
@@ -245,7 +250,14 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     b.time.read = w->read_seconds;
     const auto t = SteadyClock::now();
     try {
-      writer.write(b.feature);
+      if (b.is_building) {
+        writer.write(annotated_view(b.feature));
+        for (size_t l = 0; l < level_writers.size(); ++l)
+          level_writers[l]->write(level_view(b.feature, header, written_levels[l], b.lod));
+      } else {
+        writer.write(b.feature);
+        for (auto& lw : level_writers) lw->write(b.feature);
+      }
       b.feature = mc::io::Feature{};  // release the geometry before the reports
       b.time.write = since(t);
       ++res.features;
@@ -283,6 +295,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   if (write_error) std::rethrow_exception(write_error);
 
   writer.close();
+  for (auto& lw : level_writers) lw->close();
   if (summary) summary->commit();
   res.reader_problems = reader.problems();
   if (cache) res.cache = cache->stats();
@@ -298,6 +311,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     using ojson = nlohmann::ordered_json;
     ojson counts = ojson::object();
     for (const char* s : kStatuses) counts[s] = res.counts[s];
+    ojson level_outputs = ojson::array();
+    for (double t : written_levels) level_outputs.push_back({{"threshold", t}, {"cityjson", level_output_path(opt.output, t)}});
     ojson run = {
         {"tool", "morphcut-city"},
         {"version", MC_VERSION},
@@ -308,7 +323,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
           {"crs", header.crs},
           {"bytes", ec ? ojson(nullptr) : ojson(bytes)},
           {"sha256", sha.empty() ? ojson(nullptr) : ojson(sha)}}},
-        {"outputs", {{"cityjson", opt.output}, {"report", opt.report}, {"summary", opt.summary}}},
+        {"outputs", {{"cityjson", opt.output}, {"levels", level_outputs}, {"report", opt.report}, {"summary", opt.summary}}},
         {"config_file", opt.config_file.empty() ? ojson(nullptr) : ojson(opt.config_file)},
         {"config", ojson::parse(effective_config_json(params, rc).dump())},
         {"threads", res.threads},

@@ -190,9 +190,13 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
   const json& attrs = bobj.contains("attributes") ? bobj["attributes"] : json::object();
   if (attrs.contains("morphcut_levels") && attrs.contains("morphcut_parts") && attrs["morphcut_levels"].is_array() &&
       attrs["morphcut_parts"].is_array() && attrs["morphcut_levels"].size() == attrs["morphcut_parts"].size()) {
+    // A level output (docs/output-format.md) shows one level, named by the Building's
+    // `morphcut_level`; a file without it holds every level's parts.
+    const std::optional<double> shown = number_attribute(bobj, "morphcut_level");
     std::vector<double> declared;
     for (size_t l = 0; l < attrs["morphcut_levels"].size(); ++l) {
       const double t = attrs["morphcut_levels"][l].is_number() ? attrs["morphcut_levels"][l].get<double>() : NAN;
+      if (shown && t != *shown) continue;
       declared.push_back(t);
       const size_t want = attrs["morphcut_parts"][l].is_number_unsigned() ? attrs["morphcut_parts"][l].get<size_t>() : 0;
       const size_t have = by_level.count(t) ? by_level[t].size() : 0;
@@ -286,7 +290,7 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
 
   const mc::io::Transform t = mc::io::parse_transform(h.root, "header");
   const double scale = t.present ? std::max({std::abs(t.scale.x), std::abs(t.scale.y), std::abs(t.scale.z)}) : 0.0;
-  const SolidTolerances stol{opt.snap, opt.planarity};
+  const SolidTolerances stol{opt.snap, opt.planarity, opt.normals_deg};
   std::vector<ObjectReport> out;
   std::set<std::string> emitted;
   const bool building = mc::io::is_building(f);
@@ -327,7 +331,36 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
       }
       parts.push_back(std::move(p));
     }
-    if (status == "ok" || status == "partial") {
+    // val3dity's 601 compares every Solid of the Building and its BuildingParts at one LoD: an
+    // input Solid left at the LoD of the parts overlaps them.
+    std::set<std::string> part_lods;
+    for (const auto& id : ids)
+      for (const auto& g : objects[id].value("geometry", json::array()))
+        if (g.is_object() && g.contains("lod")) part_lods.insert(mc::io::lod_string(g["lod"]));
+    std::set<double> part_levels;
+    for (const auto& id : ids) part_levels.insert(objects[id]["attributes"]["morphcut_level"].get<double>());
+    if (part_levels.size() > 1)
+      add(br, vc::kPartsOverlap, "parts of " + std::to_string(part_levels.size()) +
+                                     " levels hang under one Building at the same LoD and overlap each other");
+    std::vector<std::string> family{f.id};
+    for (size_t k = 0; k < family.size() && !part_lods.empty(); ++k) {
+      const json& o = objects[family[k]];
+      for (const auto& g : o.value("geometry", json::array())) {
+        if (!g.is_object()) continue;
+        const std::string type = g.value("type", ""), lod = g.contains("lod") ? mc::io::lod_string(g["lod"]) : "";
+        if ((type == "Solid" || type == "CompositeSolid") && part_lods.count(lod))
+          add(br, vc::kPartsOverlap, "the input " + type + " of " + family[k] + " at LoD " + lod +
+                                         " overlaps the morphcut parts at that LoD");
+      }
+      for (const auto& c : string_list(o, "children"))
+        if (objects.contains(c) && !is_our_part(objects[c]) && std::find(family.begin(), family.end(), c) == family.end())
+          family.push_back(c);
+    }
+    const bool level_view = bobj.contains("attributes") && bobj["attributes"].is_object() &&
+                            bobj["attributes"].contains("morphcut_level");
+    if ((status == "ok" || status == "partial") && parts.empty() && !level_view) {
+      br.note = "annotated input: the parts are in the level outputs";
+    } else if (status == "ok" || status == "partial") {
       if (parts.empty()) add(br, vc::kPartsStatusMismatch, "status " + status + " but no morphcut parts");
       else check_tiling(br, bobj, parts, scale, opt, counts);
     } else if (!parts.empty()) {

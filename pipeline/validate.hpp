@@ -9,14 +9,18 @@
 #include <string>
 #include <vector>
 
+#include "core/solid_validation.hpp"
 #include "io/cityjson_types.hpp"
 
 namespace mc::pipeline {
 
+// The Solid rules default to val3dity's default tolerances (core/solid_validation.hpp), the ones
+// every written part passes (docs/output-format.md §Validity).
 struct ValidateOptions {
-  double planarity = 1e-3;   // m: face points off the face's least-squares plane
+  double planarity = val3dity_tolerances().planarity;  // m: face points off the face's least-squares plane
+  double normals_deg = val3dity_tolerances().normals_deg;  // degrees between a face's triangles' normals
   double overlap = 1e-3;     // m³: common volume of two parts of one level that is still "touching"
-  double snap = 1e-6;        // m: vertices this close are one vertex
+  double snap = val3dity_tolerances().snap;  // m: vertices this close are one vertex
   double volume_rel = 1e-6;  // relative tolerance of volume sums (the quantisation bound is added)
 };
 

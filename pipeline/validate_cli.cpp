@@ -22,10 +22,12 @@ const char* kValidateFooter = R"(Checks:
   every CityObject: required members, "parents"/"children" mirrored, the reader's problems
   every morphcut BuildingPart (attribute morphcut_level), val3dity codes: 101 TOO_FEW_POINTS,
     102 CONSECUTIVE_POINTS_SAME, 104 RING_SELF_INTERSECTION, 105 RING_COLLAPSED,
-    201 INTERSECTION_RINGS, 203 NON_PLANAR_POLYGON_DISTANCE_PLANE, 208 ORIENTATION_RINGS_SAME,
+    201 INTERSECTION_RINGS, 203 NON_PLANAR_POLYGON_DISTANCE_PLANE,
+    204 NON_PLANAR_POLYGON_NORMALS_DEVIATION, 208 ORIENTATION_RINGS_SAME,
     301 TOO_FEW_POLYGONS, 302 SHELL_NOT_CLOSED, 303 NON_MANIFOLD_CASE, 304 POLYGON_WRONG_ORIENTATION,
     305 MULTIPLE_CONNECTED_COMPONENTS, 306 SHELL_SELF_INTERSECTION, 307 ALL_POLYGONS_WRONG_ORIENTATION
-  every building with parts, per level: 601 BUILDINGPARTS_OVERLAP (common volume above
+  every building with parts: 601 BUILDINGPARTS_OVERLAP (an input Solid left at the parts' LoD,
+    parts of several levels at one LoD, or two parts of a level with a common volume above
     --tolerance-overlap), 701 PARTS_VOLUME_MISMATCH (sum of part volumes vs morphcut_cell_volume,
     relative 1e-6 plus the file's quantisation bound), 702 LEVELS_VOLUME_MISMATCH,
     703 PART_COUNT_MISMATCH (morphcut_parts), 704 OVERLAP_NOT_COMPUTED, 705 PARTS_STATUS_MISMATCH
@@ -47,7 +49,10 @@ int validate_main(int argc, char** argv) {
   bool quiet = false;
   app.add_option("FILE", file, ".city.json or .city.jsonl (CityJSONSeq)")->required();
   app.add_option("--json", json_out, "write the JSON report to this file (- = stdout)");
-  app.add_option("--tolerance-planarity", opt.planarity, "max distance of a face's points to its plane, m (default 0.001)")
+  app.add_option("--tolerance-planarity", opt.planarity, "max distance of a face's points to its plane, m (default 0.01, val3dity's)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--tolerance-normals", opt.normals_deg,
+                 "max angle between the normals of a face's triangles, degrees (default 20, val3dity's; 0 = not checked)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--tolerance-overlap", opt.overlap, "common volume two parts may have and still only touch, m³ (default 0.001)")
       ->check(CLI::NonNegativeNumber);

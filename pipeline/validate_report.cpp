@@ -41,7 +41,7 @@ json to_json(const ValidationCounts& c) {
 
 JsonValidationWriter::JsonValidationWriter(std::ostream& out, const std::string& file, const ValidateOptions& opt)
     : out_(out) {
-  const json tol = {{"planarity_m", opt.planarity}, {"overlap_m3", opt.overlap}, {"snap_m", opt.snap},
+  const json tol = {{"planarity_m", opt.planarity}, {"normals_deg", opt.normals_deg}, {"overlap_m3", opt.overlap}, {"snap_m", opt.snap},
                     {"volume_relative", opt.volume_rel}};
   out_ << "{\"file\":" << json(file).dump() << ",\"tolerances\":" << tol.dump() << ",\"objects\":[";
 }

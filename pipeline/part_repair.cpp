@@ -1,0 +1,199 @@
+#include "pipeline/part_repair.hpp"
+
+#include <algorithm>
+#include <set>
+#include <unordered_map>
+
+namespace mc::pipeline {
+
+namespace {
+
+struct LocalMesh {
+  PolygonMesh mesh;
+  std::vector<int64_t> pool_id;  // mesh vertex -> pool id
+};
+
+// The faces as a mesh over the vertices they use, one mesh face per GridFace.
+LocalMesh as_mesh(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool) {
+  LocalMesh m;
+  std::unordered_map<int64_t, uint32_t> local;
+  for (const GridFace& f : faces) {
+    Polygon p;
+    p.semantic = f.semantic;
+    for (const auto& ring : f.rings) {
+      std::vector<uint32_t> r;
+      for (int64_t id : ring) {
+        auto [it, fresh] = local.try_emplace(id, static_cast<uint32_t>(m.mesh.vertices.size()));
+        if (fresh) {
+          m.mesh.vertices.push_back(pool.at(static_cast<size_t>(id)));
+          m.pool_id.push_back(id);
+        }
+        r.push_back(it->second);
+      }
+      p.rings.push_back(std::move(r));
+    }
+    m.mesh.faces.push_back(std::move(p));
+  }
+  return m;
+}
+
+Vec3 ring_normal(const std::vector<int64_t>& ring, const std::vector<Vec3>& pool) {
+  Vec3 n;
+  const Vec3& o = pool[ring[0]];
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const Vec3 a = pool[ring[i]] - o, b = pool[ring[(i + 1) % ring.size()]] - o;
+    n += {(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+  }
+  return n;
+}
+
+bool visits_twice(const std::vector<int64_t>& ring) {
+  std::vector<int64_t> s = ring;
+  std::sort(s.begin(), s.end());
+  return std::adjacent_find(s.begin(), s.end()) != s.end();
+}
+
+// A ring that visits vertices more than once, cut at those vertices into loops that do not.
+std::vector<std::vector<int64_t>> simple_loops(const std::vector<int64_t>& ring) {
+  std::vector<std::vector<int64_t>> loops;
+  std::vector<int64_t> stack;
+  for (int64_t v : ring) {
+    auto at = std::find(stack.begin(), stack.end(), v);
+    if (at != stack.end()) {
+      loops.emplace_back(at, stack.end());
+      stack.erase(at + 1, stack.end());
+    } else {
+      stack.push_back(v);
+    }
+  }
+  loops.push_back(std::move(stack));
+  loops.erase(std::remove_if(loops.begin(), loops.end(), [](const auto& l) { return l.size() < 3; }), loops.end());
+  return loops;
+}
+
+// Is point p inside the ring, both projected along the normal's dominant axis?
+bool inside_projected(const Vec3& p, const std::vector<int64_t>& ring, const std::vector<Vec3>& pool, const Vec3& n) {
+  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+  auto uv = [&](const Vec3& q) {
+    return ax >= ay && ax >= az ? std::pair{q.y, q.z} : ay >= az ? std::pair{q.z, q.x} : std::pair{q.x, q.y};
+  };
+  const auto [px, py] = uv(p);
+  bool in = false;
+  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const auto [xi, yi] = uv(pool[ring[i]]);
+    const auto [xj, yj] = uv(pool[ring[j]]);
+    if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) in = !in;
+  }
+  return in;
+}
+
+// Repair 1: every ring cut into simple loops; loops turning like the face's outer ring are faces,
+// the others holes of the face around them.
+std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>& pool) {
+  const Vec3 n = ring_normal(f.rings[0], pool);
+  std::vector<std::vector<int64_t>> outers, holes;
+  for (const auto& ring : f.rings)
+    for (auto& loop : simple_loops(ring)) (dot(ring_normal(loop, pool), n) > 0 ? outers : holes).push_back(std::move(loop));
+  std::vector<GridFace> out;
+  for (auto& o : outers) out.push_back({{std::move(o)}, f.semantic});
+  if (out.empty()) return {f};
+  for (auto& h : holes) {
+    size_t host = 0;
+    double largest = -1;
+    for (size_t k = 0; k < out.size(); ++k) {
+      const double area = norm(ring_normal(out[k].rings[0], pool));
+      const auto& outer = out[k].rings[0];
+      auto free = std::find_if(h.begin(), h.end(), [&](int64_t v) { return std::find(outer.begin(), outer.end(), v) == outer.end(); });
+      const bool contains = free != h.end() && inside_projected(pool[*free], outer, pool, n);
+      if (contains && area > largest) host = k, largest = area;
+    }
+    out[host].rings.push_back(std::move(h));
+  }
+  return out;
+}
+
+// Repair 2: the face as triangles in its plane (each a face of its own). Empty when its rings
+// cross each other.
+std::vector<GridFace> triangles_of(const GridFace& f, const std::vector<Vec3>& pool) {
+  std::vector<Vec3> pts;
+  std::vector<int64_t> ids;
+  std::vector<std::vector<uint32_t>> rings;
+  for (const auto& ring : f.rings) {
+    std::vector<uint32_t> r;
+    for (int64_t id : ring) {
+      auto at = std::find(ids.begin(), ids.end(), id);
+      if (at == ids.end()) {
+        ids.push_back(id);
+        pts.push_back(pool[id]);
+        at = ids.end() - 1;
+      }
+      r.push_back(static_cast<uint32_t>(at - ids.begin()));
+    }
+    rings.push_back(std::move(r));
+  }
+  std::vector<std::array<uint32_t, 3>> tris;
+  if (!triangulate_polygon(rings, pts, tris)) return {};
+  std::vector<GridFace> out;
+  for (const auto& t : tris) out.push_back({{{ids[t[0]], ids[t[1]], ids[t[2]]}}, f.semantic});
+  return out;
+}
+
+// Faces of a rule that no change of the face alone can fix (vertices within the snap distance):
+// those need the level's vertices clustered.
+bool face_repairable(int code) {
+  return code == solid_code::kRingSelfIntersection || code == solid_code::kNonPlanarPolygon ||
+         code == solid_code::kNonPlanarNormals || code == solid_code::kRingCollapsed ||
+         code == solid_code::kIntersectionRings || code == solid_code::kOrientationRingsSame;
+}
+
+}  // namespace
+
+std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool, SolidCheck* check) {
+  Shell shell;
+  for (const auto& f : faces) shell.push_back(f.rings);
+  if (std::string d = closed_shell_defect(shell); !d.empty()) return "not a closed 2-manifold (" + d + ")";
+  const LocalMesh m = as_mesh(faces, pool);
+  SolidCheck c = check_solid(m.mesh, val3dity_tolerances(), false);
+  std::string defect;
+  if (!c.errors.empty()) defect = std::to_string(c.errors[0].code) + " " + c.errors[0].name + ": " + c.errors[0].message;
+  if (check) *check = std::move(c);
+  return defect;
+}
+
+PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool) {
+  PartRepair r;
+  r.faces = std::move(faces);
+  SolidCheck c;
+  r.defect = grid_solid_defect(r.faces, pool, &c);
+  for (int round = 0; round < 2 && !r.defect.empty(); ++round) {
+    std::set<size_t> bad;
+    for (const auto& [fi, code] : c.bad_faces)
+      if (face_repairable(code)) bad.insert(fi);
+    if (bad.empty()) break;
+    std::vector<GridFace> next;
+    bool changed = false;
+    for (size_t i = 0; i < r.faces.size(); ++i) {
+      const GridFace& f = r.faces[i];
+      std::vector<GridFace> pieces;
+      if (bad.count(i)) {
+        const bool touching = std::any_of(f.rings.begin(), f.rings.end(), visits_twice);
+        if (round == 0 && touching) pieces = split_touching(f, pool);
+        else if (round == 1 || !touching) pieces = triangles_of(f, pool);
+      }
+      if (pieces.empty()) {
+        next.push_back(f);
+        continue;
+      }
+      changed = true;
+      ++r.split_faces;
+      for (auto& p : pieces) next.push_back(std::move(p));
+    }
+    if (!changed) continue;
+    r.repaired = true;
+    r.faces = std::move(next);
+    r.defect = grid_solid_defect(r.faces, pool, &c);
+  }
+  return r;
+}
+
+}  // namespace mc::pipeline

@@ -1,0 +1,33 @@
+// Checking and repairing one part after quantisation to the output grid (docs/output-format.md
+// §Validity). Rounding every vertex to the grid can bend a face out of its plane, make a ring touch
+// itself, or fold a thin sliver; val3dity then rejects the part. The repairs, in order:
+//   1. a ring that touches itself at a vertex is split there into simple rings (loops turning like
+//      the face become faces of their own, loops turning against it become holes);
+//   2. a face that is not planar enough (distance 203, normals 204) or whose ring is still not
+//      simple is replaced by its triangles (constrained Delaunay in its plane);
+// then the part is checked again. A part that still fails is left to the caller, which clusters
+// the level's vertices more coarsely and encodes it again (pipeline/job.cpp).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/solid_validation.hpp"
+#include "pipeline/part_objects.hpp"
+
+namespace mc::pipeline {
+
+struct PartRepair {
+  std::vector<GridFace> faces;  // the faces to write
+  size_t split_faces = 0;       // input faces written as several polygons
+  bool repaired = false;
+  std::string defect;           // empty = passes val3dity's rules at its default tolerances
+};
+
+// `pool` holds the coordinates of the ids in `faces`.
+PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool);
+
+// The checks alone: val3dity's rules on the faces as they are (first error, or empty).
+std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool,
+                              SolidCheck* check = nullptr);
+
+}  // namespace mc::pipeline
