@@ -433,6 +433,9 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
     }
     // Parts: BuildingParts with morphcut_level, each level from the first file that has it.
     for (auto it = f.objects.begin(); it != f.objects.end(); ++it) {
+      // (A per-level file also marks the Building itself with the level it shows.)
+      if (!member(it.value(), "type").is_string() || member(it.value(), "type").get<std::string>() != "BuildingPart")
+        continue;
       const json& attr = member(it.value(), "attributes");
       const json& level = member(attr, "morphcut_level");
       if (!level.is_number()) continue;
