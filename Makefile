@@ -33,6 +33,8 @@ demo: build
 	  > $(DEMO_OUT)/demo.validate.txt; rc=$$?; tail -2 $(DEMO_OUT)/demo.validate.txt; [ $$rc -le 1 ] || exit $$rc
 	@echo "demo outputs in $(DEMO_OUT)/: demo.morphcut.city.json, demo.morphcut.report.json, demo.morphcut.csv," \
 	  "demo.validate.json (validation report; invalid objects listed in demo.validate.txt)"
+	@# the run wrote the HTML page beside its report (morphcut-city --no-html turns it off)
+	@echo "open the page (offline, self-contained): $(abspath $(DEMO_OUT))/demo.morphcut.html"
 
 bench: build
 	@$(BUILD)/tools/bench_cityjson_io

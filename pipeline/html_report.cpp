@@ -160,7 +160,7 @@ struct Building {
   std::string id, status, reason, tile, role;
   double job = kNaN, faces = kNaN, hausdorff = kNaN;
   std::map<double, int, std::greater<>> parts;  // threshold -> parts
-  std::map<double, double, std::greater<>> convexity, min_convexity;
+  std::map<double, double, std::greater<>> convexity;
   bool from_report = false;
   bool ghost_done = false;
   bool want_3d = false;
@@ -170,7 +170,7 @@ struct Building {
   // Which file gave each level's parts (a level is taken from the first file that has it).
   std::map<double, size_t> level_file;
   // Parts' volume-weighted convexity sums, for a page made without a report.
-  std::map<double, std::array<double, 3>, std::greater<>> part_sums;  // volume, volume*cvx, min cvx
+  std::map<double, std::array<double, 2>, std::greater<>> part_sums;  // volume, volume * convexity
   double role_volume = -1, role_level = kNaN;
   std::unique_ptr<Geometry> geo;
 };
@@ -346,7 +346,6 @@ void read_report(const std::string& path, Page& page) {
       levels.insert(t);
       b.parts[t] = static_cast<int>(number_or(member(l, "parts"), 0));
       b.convexity[t] = number_or(member(l, "convexity"), kNaN);
-      b.min_convexity[t] = number_or(member(l, "min_convexity"), kNaN);
     }
   }
   meta["job_seconds_sum"] = rounded(job_sum, 1e-3);
@@ -453,8 +452,8 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
         b.role_level = t;
         b.role_volume = volume;
       }
-      auto& s = b.part_sums.try_emplace(t, std::array<double, 3>{0, 0, 1}).first->second;
-      if (std::isfinite(cvx)) s[0] += volume, s[1] += volume * cvx, s[2] = std::min(s[2], cvx);
+      auto& s = b.part_sums.try_emplace(t, std::array<double, 2>{0, 0}).first->second;
+      if (std::isfinite(cvx)) s[0] += volume, s[1] += volume * cvx;
       if (!b.want_3d) continue;
       if (!b.geo) b.geo = std::make_unique<Geometry>();
       ojson faces = ojson::array();
@@ -509,7 +508,7 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
   for (Building& b : page.buildings) {
     if (b.from_report) continue;
     for (const auto& [t, s] : b.part_sums) {
-      if (!b.convexity.count(t) && s[0] > 0) b.convexity[t] = s[1] / s[0], b.min_convexity[t] = s[2];
+      if (!b.convexity.count(t) && s[0] > 0) b.convexity[t] = s[1] / s[0];
       if (!b.parts.count(t) && b.level_file.count(t)) {
         int n = 0;  // parts counted from the geometry read
         if (b.geo && b.geo->levels.count(t)) n = static_cast<int>(b.geo->levels[t].size());
@@ -553,7 +552,6 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
     }
     r["p"] = parts;
     r["c"] = level_array(b.convexity, page.levels, 1e-4);
-    r["m"] = level_array(b.min_convexity, page.levels, 1e-4);
     if (!b.role.empty()) r["ro"] = b.role, roles = true;
     if (std::isfinite(b.cx)) r["xy"] = {rounded(b.cx - ox, 0.1), rounded(b.cy - oy, 0.1)};
     if (draw_footprints && !b.footprint.empty()) {

@@ -25,7 +25,7 @@ namespace mc::pipeline {
 
 struct HtmlReportOptions {
   size_t max_3d_buildings = 500;
-  size_t max_footprints = 50000;
+  size_t max_footprints = 20000;
 };
 
 struct HtmlReportResult {

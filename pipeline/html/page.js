@@ -1,8 +1,8 @@
 // The morphcut-city HTML report's script (pipeline/html_report.cpp writes the data it reads).
 // Data (script#mc-data): {format, meta, tiles, buildings, geometry}
 //   buildings[i]: id, s status, r reason, t tile index, j job seconds, f input faces,
-//     h Hausdorff, p parts per level, c / m volume-weighted / minimum convexity per level
-//     (meta.levels order, null = none), ro role, xy centroid (m), fp footprint rings (flat x,y in
+//     h Hausdorff, p parts per level, c volume-weighted convexity per level (meta.levels
+//     order, null = none), ro role, xy centroid (m), fp footprint rings (flat x,y in
 //     dm, both relative to meta.origin), g index into geometry
 //   geometry[k]: o origin (m, x/y relative to meta.origin), v flat x,y,z in mm relative to o,
 //     ghost faces, l per level: parts [index, volume, convexity, neighbours, role, id, faces];
@@ -475,9 +475,12 @@
     host.dataset.parts = String(view.parts.length);
     host.dataset.level = level >= 0 ? String(L[level]) : '';
     if (!keepCamera) {
-      const d = Math.max(x1 - x0, y1 - y0, z1 - z0, 1);
+      // Frame the bounding sphere, seen from the south-east and above.
+      const radius = Math.max(0.5 * Math.hypot(x1 - x0, y1 - y0, z1 - z0), 0.5), d = 2 * radius;
+      const dist = (radius / Math.sin((view.camera.fov * Math.PI) / 360)) * 0.92;
+      const dir = new THREE.Vector3(0.55, -0.72, 0.42).normalize().multiplyScalar(dist);
       view.controls.target.set(cx, cy, cz);
-      view.camera.position.set(cx + d * 0.85, cy - d * 1.1, cz + d * 0.8);
+      view.camera.position.set(cx + dir.x, cy + dir.y, cz + dir.z);
       view.camera.near = d / 100; view.camera.far = d * 100; view.camera.updateProjectionMatrix();
       view.controls.update();
     }

@@ -166,6 +166,47 @@ TEST(HtmlReport, PageFromRealOutputsIsSelfContainedAndAgreesWithTheReport) {
   EXPECT_EQ(r4.footprints, 2u);
 }
 
+// The CLI: the run writes the page beside its report by default and prints its path and time;
+// --no-html writes none; `morphcut-city html` remakes the same bytes from the outputs.
+TEST(HtmlReport, CliWritesThePageByDefaultAndTheSubcommandRemakesIt) {
+  using mc::test::cli_path;
+  using mc::test::run_command;
+  ASSERT_TRUE(mc::test::fs::exists(cli_path())) << cli_path() << " missing: build morphcut_city first";
+  MC_REQUIRE_DATA(input, "3dbag/3dbag_b2.city.jsonl");
+  const mc::test::TempDir dir("html_cli");
+  {
+    std::ofstream cfg(dir / "quick.yaml");
+    cfg << "decompose:\n  levels: [0.1, 0.01]\n";
+  }
+  mc::test::fs::create_directories(dir.path / "out");
+  mc::test::fs::create_directories(dir.path / "none");
+  const auto r = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
+                             " --config quick.yaml --threads 2 -o out/tile.morphcut.city.jsonl");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const std::string page = dir / "out/tile.morphcut.html";
+  ASSERT_TRUE(mc::test::fs::exists(page)) << r.output;
+  EXPECT_NE(r.output.find("HTML page"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("of the run's"), std::string::npos) << r.output;  // its time vs the run's
+  EXPECT_NE(r.output.find(page.substr(dir.path.string().size() + 1)), std::string::npos) << r.output;
+  const json data = page_data(mc::test::slurp(page));
+  EXPECT_EQ(data["buildings"].size(), 2u);
+  EXPECT_EQ(data["geometry"].size(), 2u);
+
+  const auto h = run_command("cd " + dir.path.string() + " && " + cli_path() +
+                             " html out/tile.morphcut.report.json -o again.html");
+  EXPECT_EQ(h.exit_code, 0) << h.output;
+  EXPECT_EQ(mc::test::slurp(dir / "again.html"), mc::test::slurp(page));
+
+  const auto n = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
+                             " --config quick.yaml --threads 2 -q --no-html -o none/tile.morphcut.city.jsonl");
+  EXPECT_EQ(n.exit_code, 0) << n.output;
+  EXPECT_TRUE(mc::test::fs::exists(dir / "none/tile.morphcut.report.json"));
+  EXPECT_FALSE(mc::test::fs::exists(dir / "none/tile.morphcut.html"));
+
+  const auto bad = run_command(cli_path() + " html " + (dir / "missing.report.json"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+}
+
 TEST(HtmlReport, Errors) {
   const mc::test::TempDir dir("html_report_errors");
   EXPECT_THROW(write_html_report(dir / "missing.report.json", {}, dir / "x.html"), mc::io::ReadError);

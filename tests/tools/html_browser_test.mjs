@@ -4,7 +4,8 @@
 // Fails on any console error, page error, failed request or request at all (the page must make
 // none), on a blank 3D canvas (screenshot pixels), when picking a building in the plan does not
 // show its parts, and when the page is not interactive within --max-interactive-ms. Keeps the
-// screenshots in --out (html_page.png, html_3d.png, html_3d_picked.png) and prints its numbers.
+// screenshots in --out (html_page.png, html_3d.png, html_3d_picked.png, html_views.png) and
+// prints its numbers.
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -153,6 +154,19 @@ try {
     const coarse = await page.evaluate(() => window.mcReport.shown());
     console.log(`coarsest level: ${JSON.stringify(coarse)}`);
     if (!(coarse.parts > 0)) fail('no parts at the coarsest level');
+    // The plan and 3D view side by side (docs/img/html-report.png is one of these): a building
+    // with 6 to 12 parts at the second level (the most such), its parts pulled apart.
+    const nice = await page.evaluate(() => {
+      const D = JSON.parse(document.getElementById('mc-data').textContent);
+      let best = null;
+      for (const b of D.buildings) if (b.g != null && b.p[1] != null && b.p[1] <= 12 && (!best || b.p[1] > best.p[1])) best = b;
+      return best && best.id;
+    });
+    if (nice) {
+      await page.evaluate((id) => { window.mcReport.select(id); window.mcReport.level(1); }, nice);
+      await page.locator('#explode-toggle').check();
+      await page.locator('#views').screenshot({ path: path.join(out, 'html_views.png') });
+    }
   }
 } catch (e) {
   fail(String(e && e.stack || e));
