@@ -164,6 +164,7 @@ struct Building {
   bool from_report = false;
   bool ghost_done = false;
   bool want_3d = false;
+  size_t rank = 0;  // priority for 3D geometry (rank_3d; file order without a report)
   // Footprint rings (absolute coordinates) and centroid for the plan view.
   std::vector<std::vector<std::array<double, 2>>> footprint;
   double cx = kNaN, cy = kNaN;
@@ -352,36 +353,34 @@ void read_report(const std::string& path, Page& page) {
   page.levels.assign(levels.rbegin(), levels.rend());
 }
 
-// Which buildings get 3D geometry (see the header): all when they fit, else failed and partial,
-// then half of the rest of the budget to the slowest, the other half to the least convex.
-void choose_3d(Page& page, size_t bound) {
+// The order in which buildings get 3D geometry (see the header): failed, partial, then the
+// slowest and the least convex at the finest level alternately. The first `bound` are read with
+// geometry; page_data may drop the last of them to keep within the byte budget.
+void rank_3d(Page& page, size_t bound) {
   auto& bs = page.buildings;
-  if (bs.size() <= bound) {
-    for (auto& b : bs) b.want_3d = true;
-    return;
-  }
-  size_t left = bound;
+  std::vector<size_t> ranked;
+  std::vector<bool> taken(bs.size(), false);
   auto take = [&](size_t i) {
-    if (left == 0 || bs[i].want_3d) return;
-    bs[i].want_3d = true;
-    --left;
+    if (!taken[i]) taken[i] = true, ranked.push_back(i);
   };
   for (const char* s : {"failed", "partial"})
     for (size_t i = 0; i < bs.size(); ++i)
       if (bs[i].status == s) take(i);
-  std::vector<size_t> order(bs.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  auto key_slow = [&](size_t i) { return std::isfinite(bs[i].job) ? bs[i].job : -1.0; };
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key_slow(a) > key_slow(b); });
-  const size_t slow_budget = left / 2;
-  for (size_t i = 0, taken = 0; i < order.size() && taken < slow_budget; ++i)
-    if (!bs[order[i]].want_3d) take(order[i]), ++taken;
-  auto finest_cvx = [&](size_t i) {
+  std::vector<size_t> slow(bs.size()), convex;
+  for (size_t i = 0; i < slow.size(); ++i) slow[i] = i;
+  convex = slow;
+  auto job = [&](size_t i) { return std::isfinite(bs[i].job) ? bs[i].job : -1.0; };
+  std::stable_sort(slow.begin(), slow.end(), [&](size_t a, size_t b) { return job(a) > job(b); });
+  auto finest_cvx = [&](size_t i) {  // the map is coarse to fine: its last entry is the finest level
     const auto& c = bs[i].convexity;
     return c.empty() || !std::isfinite(c.rbegin()->second) ? 2.0 : c.rbegin()->second;
   };
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return finest_cvx(a) < finest_cvx(b); });
-  for (size_t i : order) take(i);
+  std::stable_sort(convex.begin(), convex.end(), [&](size_t a, size_t b) { return finest_cvx(a) < finest_cvx(b); });
+  for (size_t k = 0; k < bs.size(); ++k) take(slow[k]), take(convex[k]);
+  for (size_t r = 0; r < ranked.size(); ++r) {
+    bs[ranked[r]].rank = r;
+    bs[ranked[r]].want_3d = r < bound;
+  }
 }
 
 void read_city_file(const std::string& path, size_t file_index, Page& page, const HtmlReportOptions& opt,
@@ -408,7 +407,8 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
     Building* bp;
     if (found == page.by_id.end()) {
       Building& nb = page.add(f.id);
-      nb.want_3d = !have_report && page.buildings.size() <= opt.max_3d_buildings;
+      nb.rank = page.buildings.size() - 1;
+      nb.want_3d = !have_report && nb.rank < opt.max_3d_buildings;
       bp = &nb;
     } else {
       bp = &page.buildings[found->second];
@@ -533,11 +533,44 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
   for (const Building& b : page.buildings) with_fp += !b.footprint.empty();
   const bool draw_footprints = with_fp <= opt.max_footprints;
 
+  // Each embedded building's geometry; then, by rank, as many as fit in the byte budget.
+  std::vector<ojson> geo_json(page.buildings.size());
+  std::vector<size_t> with_geo;
+  for (size_t i = 0; i < page.buildings.size(); ++i) {
+    Building& b = page.buildings[i];
+    if (!b.geo || b.geo->v.empty()) continue;
+    Geometry& g = *b.geo;
+    std::array<int64_t, 3> lo = g.v[0];
+    for (const auto& v : g.v)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]);
+    ojson verts = ojson::array();
+    for (const auto& v : g.v)
+      for (int k = 0; k < 3; ++k) verts.push_back(v[k] - lo[k]);
+    ojson levels = ojson::array();
+    for (double t : page.levels) {
+      auto it = g.levels.find(t);
+      levels.push_back(it == g.levels.end() ? ojson(nullptr) : std::move(it->second));
+    }
+    const ojson origin = {rounded(lo[0] / kMm - ox, 1e-3), rounded(lo[1] / kMm - oy, 1e-3), rounded(lo[2] / kMm, 1e-3)};
+    geo_json[i] = {{"o", origin}, {"v", std::move(verts)}, {"ghost", std::move(g.ghost)}, {"l", std::move(levels)}};
+    b.geo.reset();
+    with_geo.push_back(i);
+  }
+  std::stable_sort(with_geo.begin(), with_geo.end(),
+                   [&](size_t a, size_t b) { return page.buildings[a].rank < page.buildings[b].rank; });
+  size_t geo_bytes = 0, over_budget = 0;
+  for (size_t i : with_geo) {
+    const size_t n = geo_json[i].dump().size();
+    if (geo_bytes + n > opt.max_3d_bytes) geo_json[i] = nullptr, ++over_budget;
+    else geo_bytes += n;
+  }
+
   ojson rows = ojson::array();
   ojson geometry = ojson::array();
   std::map<std::string, size_t> tile_index;
   size_t with_3d = 0, footprints = 0;
   bool roles = false;
+  size_t i = 0;
   for (Building& b : page.buildings) {
     ojson r = {{"id", b.id}, {"s", b.status}};
     if (!b.reason.empty()) r["r"] = b.reason;
@@ -570,26 +603,12 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
       }
       if (!fp.empty()) r["fp"] = std::move(fp), ++footprints;
     }
-    if (b.geo && !b.geo->v.empty()) {
-      Geometry& g = *b.geo;
-      std::array<int64_t, 3> lo = g.v[0];
-      for (const auto& v : g.v)
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]);
-      ojson verts = ojson::array();
-      for (const auto& v : g.v)
-        for (int k = 0; k < 3; ++k) verts.push_back(v[k] - lo[k]);
-      ojson levels = ojson::array();
-      for (double t : page.levels) {
-        auto it = g.levels.find(t);
-        levels.push_back(it == g.levels.end() ? ojson(nullptr) : std::move(it->second));
-      }
-      const ojson origin = {rounded(lo[0] / kMm - ox, 1e-3), rounded(lo[1] / kMm - oy, 1e-3), rounded(lo[2] / kMm, 1e-3)};
-      r["g"] = with_3d;  // index into geometry
-      geometry.push_back({{"o", origin}, {"v", std::move(verts)}, {"ghost", std::move(g.ghost)}, {"l", std::move(levels)}});
-      ++with_3d;
-      b.geo.reset();
+    if (!geo_json[i].is_null()) {
+      r["g"] = with_3d++;  // index into geometry
+      geometry.push_back(std::move(geo_json[i]));
     }
     rows.push_back(std::move(r));
+    ++i;
   }
   ojson tiles = ojson::array();
   std::vector<std::string> names(tile_index.size());
@@ -601,14 +620,16 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
   meta["origin"] = {ox, oy};
   meta["crs"] = member(member(meta, "input"), "crs");
   meta["bound"] = {{"max_3d", opt.max_3d_buildings},
+                   {"max_3d_mb", static_cast<double>(opt.max_3d_bytes) / 1e6},
                    {"with_3d", with_3d},
+                   {"over_budget", over_budget},
                    {"max_footprints", opt.max_footprints},
                    {"footprints", footprints},
                    {"footprints_capped", !draw_footprints},
-                   {"rule", page.buildings.size() <= opt.max_3d_buildings
+                   {"rule", page.buildings.size() <= opt.max_3d_buildings && over_budget == 0
                                 ? "every building"
-                                : "failed and partial buildings first, then the slowest, then the least convex "
-                                  "at the finest level"}};
+                                : "failed and partial buildings first, then the slowest and the least convex at "
+                                  "the finest level alternately"}};
   meta["roles"] = roles;
   meta["three"] = html_assets::kHasThree;
   meta["warnings"] = page.warnings;
@@ -653,7 +674,7 @@ HtmlReportResult write_html_report(const std::string& report_json_path, const st
   else page.meta["kind"] = "city";
   HtmlReportResult res;
   res.city_files = city_paths.empty() && have_report ? city_files_of_report(report_json_path) : city_paths;
-  if (have_report) choose_3d(page, opt.max_3d_buildings);
+  if (have_report) rank_3d(page, opt.max_3d_buildings);
   for (size_t i = 0; i < res.city_files.size(); ++i) read_city_file(res.city_files[i], i, page, opt, have_report);
   if (!have_report && page.buildings.empty())
     throw mc::io::ReadError("no buildings found in the city files given and no report");

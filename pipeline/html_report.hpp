@@ -10,10 +10,11 @@
 // the first file that has it. Coordinates are real-world (the file's transform applied), then
 // centred on the city's minimum x/y so that the browser's float32 keeps millimetres.
 //
-// Size bound: 3D geometry is embedded for at most `max_3d_buildings` buildings (all of them when
-// the city has no more: the 3D BAG demo tile has 432); for a larger city the failed and partial
-// buildings first, then the slowest, then the least convex at the finest level. Every building
-// keeps its table row, plot points and plan footprint (a dot beyond `max_footprints`).
+// Size bound: 3D geometry is embedded for at most `max_3d_buildings` buildings and
+// `max_3d_bytes` of JSON (every building of the 3D BAG demo tile: 432, 2.9 MB); for a larger city
+// the failed and partial buildings first, then the slowest and the least convex at the finest
+// level alternately. Every building keeps its table row, plot points and plan footprint (a dot
+// beyond `max_footprints`).
 // The page is deterministic: the same inputs give the same bytes (no time stamps).
 #pragma once
 #include <cstddef>
@@ -25,6 +26,7 @@ namespace mc::pipeline {
 
 struct HtmlReportOptions {
   size_t max_3d_buildings = 500;
+  size_t max_3d_bytes = 4'000'000;
   size_t max_footprints = 20000;
 };
 

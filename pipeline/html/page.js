@@ -571,7 +571,7 @@
   function about() {
     const bd = M.bound;
     $('about').innerHTML =
-      `<p>3D geometry (input ghost and every level's parts) is embedded for ${bd.with_3d} of ${B.length} buildings: ${esc(bd.rule)} (bound ${bd.max_3d} buildings, so that a large city's page stays small). Every building has its row in the tables, its point in the plots and its footprint in the plan${bd.footprints_capped ? ` (as a dot: more than ${bd.max_footprints} footprints)` : ''}.</p>` +
+      `<p>3D geometry (input ghost and every level's parts) is embedded for ${bd.with_3d} of ${B.length} buildings: ${esc(bd.rule)} (bound: ${bd.max_3d} buildings and ${bd.max_3d_mb} MB of geometry, so that a large city's page stays small). Every building has its row in the tables, its point in the plots and its footprint in the plan${bd.footprints_capped ? ` (as a dot: more than ${bd.max_footprints} footprints)` : ''}.</p>` +
       `<p>Sources: ${M.report ? `run report <code>${esc(M.report)}</code>; ` : ''}city files ${(M.city_files || []).map((f) => `<code>${esc(f)}</code>`).join(', ') || 'none'}. Parts are the BuildingParts with <code>morphcut_level</code>; the ghost is each building's own input geometry at its highest LoD. Made again from the same outputs with <code>morphcut-city html REPORT.json [CITY.json ...] -o OUT.html</code>.</p>` +
       (M.warnings && M.warnings.length ? `<p>Warnings: ${M.warnings.map(esc).join('; ')}</p>` : '') +
       `<p>This page is self-contained and makes no network request (its Content-Security-Policy forbids any). The 3D view uses three.js ${typeof THREE !== 'undefined' ? esc(THREE.REVISION) : '(not included)'} (MIT licence, © three.js authors; the licence text is in the comment at the head of the inline three.js script).</p>`;

@@ -164,6 +164,11 @@ TEST(HtmlReport, PageFromRealOutputsIsSelfContainedAndAgreesWithTheReport) {
   const HtmlReportResult r4 = write_html_report(run.report, {}, dir / "bounded.html", small);
   EXPECT_EQ(r4.with_3d, 1u);
   EXPECT_EQ(r4.footprints, 2u);
+  HtmlReportOptions tiny;
+  tiny.max_3d_bytes = 1;  // the byte budget: no building's geometry fits
+  const HtmlReportResult r5 = write_html_report(run.report, {}, dir / "tiny.html", tiny);
+  EXPECT_EQ(r5.with_3d, 0u);
+  EXPECT_EQ(r5.buildings, 2u);
 }
 
 // The CLI: the run writes the page beside its report by default and prints its path and time;
