@@ -695,7 +695,7 @@ HtmlReportResult write_html_report(const std::string& report_json_path, const st
   // Title: the input's (or the report's) name.
   std::string name = string_or(member(member(page.meta, "input"), "path"));
   if (name.empty()) name = have_report ? report_json_path : "city";
-  name = fs::path(name).filename().string();
+  name = name == "-" ? "stdin" : fs::path(name).filename().string();
   page.meta["title"] = "morphcut-city: " + name;
 
   res.buildings = page.buildings.size();
