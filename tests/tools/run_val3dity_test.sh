@@ -3,9 +3,9 @@
 # tools/val3dity/build.sh) as an independent check of morphcut-city's output geometry.
 #
 # usage: tests/tools/run_val3dity_test.sh BUILD_DIR selftest|demo
-#   selftest  tools/val3dity/check.py on hand-made CityJSON files: an error on a morphcut part
-#             (and an overlap of two morphcut parts) is ours and fails (exit 1); errors on the
-#             input's own BuildingParts, also one with a morphcut-like id but no
+#   selftest  tools/val3dity/check.py on hand-made CityJSON and CityJSONSeq files: an error on
+#             a morphcut part (and an overlap of two morphcut parts) is ours and fails (exit 1);
+#             errors on the input's own BuildingParts, also one with a morphcut-like id but no
 #             `morphcut_level`, are listed as input; a file with valid parts passes (exit 0).
 #   demo      morphcut-city on the bundled 3D BAG tile, then check.py on every CityJSON file the
 #             run wrote (the main output and one file per level): fails on any error on our
@@ -73,27 +73,38 @@ broken = city([
     part("b3-1", "b3", cube(20500)),
 ])
 json.dump(broken, open(f"{tmp}/broken.city.json", "w"))
+# The same as CityJSONSeq: a header line, then one CityJSONFeature per Building (each with all
+# the vertices, which only makes some of them unused).
+with open(f"{tmp}/broken.city.jsonl", "w") as f:
+    header = {k: v for k, v in broken.items() if k not in ("CityObjects", "vertices")}
+    f.write(json.dumps({**header, "CityObjects": {}, "vertices": []}) + "\n")
+    for bid, b in broken["CityObjects"].items():
+        if b["type"] == "Building":
+            cos = {bid: b, **{c: broken["CityObjects"][c] for c in b["children"]}}
+            f.write(json.dumps({"type": "CityJSONFeature", "id": bid, "CityObjects": cos,
+                                "vertices": broken["vertices"]}) + "\n")
 verts.clear()
 valid = city([part("b1-mc0-0", "b1", cube(0), 0.1), part("b1-mc0-1", "b1", cube(1000), 0.1)])
 json.dump(valid, open(f"{tmp}/valid.city.json", "w"))
 EOF
   set +e
-  python3 "$check" --val3dity "$v3" --report-dir "$tmp/reports" --json "$tmp/broken.json" "$tmp/broken.city.json"
+  python3 "$check" --val3dity "$v3" --report-dir "$tmp/reports" --json "$tmp/broken.json" \
+    "$tmp/broken.city.json" "$tmp/broken.city.jsonl"
   rc=$?
   set -e
   [ "$rc" -eq 1 ] || { echo "FAIL: check.py exited $rc on a file with a broken morphcut part (expected 1)"; exit 1; }
   python3 - "$tmp/broken.json" <<'EOF'
 import json, sys
-r = json.load(open(sys.argv[1]))["files"][0]
-ours = sorted((e["object"], e["code"]) for e in r["our_errors"])
-inputs = sorted((e["object"], e["code"]) for e in r["input_errors"])
 want_ours = [("b1-mc0-0", 302), ("b2-mc0-0 && b2-mc0-1", 601)]
 want_inputs = [("b1-0", 203), ("b1-mc0-1", 302), ("b3-0 && b3-1", 601)]
 ok = True
-if ours != want_ours:
-    print(f"FAIL: our errors {ours}, expected {want_ours}"); ok = False
-if sorted(set(inputs)) != want_inputs:
-    print(f"FAIL: input errors {inputs}, expected {want_inputs}"); ok = False
+for r in json.load(open(sys.argv[1]))["files"]:
+    ours = sorted((e["object"], e["code"]) for e in r["our_errors"])
+    inputs = sorted((e["object"], e["code"]) for e in r["input_errors"])
+    if ours != want_ours:
+        print(f"FAIL: {r['file']}: our errors {ours}, expected {want_ours}"); ok = False
+    if sorted(set(inputs)) != want_inputs:
+        print(f"FAIL: {r['file']}: input errors {inputs}, expected {want_inputs}"); ok = False
 sys.exit(0 if ok else 1)
 EOF
   set +e

@@ -100,12 +100,18 @@ def run_val3dity(binary, path, report):
     seconds = time.monotonic() - start
     # val3dity exits 0 whether or not the file is valid; anything else is a crash.
     if rc != 0:
-        raise ToolError(f"val3dity exited with {rc} on {path} (log: {log})")
+        raise ToolError(f"val3dity exited with {rc} on {path}; end of its log:\n{tail(log)}")
     try:
         with open(report, encoding="utf-8") as f:
             return json.load(f), seconds
     except (OSError, ValueError) as e:
-        raise ToolError(f"val3dity wrote no readable report for {path} (log: {log}): {e}") from e
+        raise ToolError(f"val3dity wrote no readable report for {path} ({e}); end of its log:\n{tail(log)}") from e
+
+
+def tail(path, lines=10):
+    """The last lines of a log, quoted in an error message (the log may be in a removed temp dir)."""
+    with open(path, encoding="utf-8", errors="replace") as f:
+        return "".join(f.readlines()[-lines:]).rstrip()
 
 
 def check_file(binary, path, report_dir):
