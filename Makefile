@@ -28,11 +28,13 @@ demo: build
 	@$(BUILD)/tools/morphcut-city $(DEMO_INPUT) -o $(DEMO_OUT)/demo.morphcut.city.json \
 	  --report $(DEMO_OUT)/demo.morphcut.report.json --summary $(DEMO_OUT)/demo.morphcut.csv; \
 	  rc=$$?; [ $$rc -le 1 ] || exit $$rc
-	@# every part checked (valid solids, tiling each building's cell); its summary is the last lines
-	@$(BUILD)/tools/morphcut-city validate $(DEMO_OUT)/demo.morphcut.city.json --json $(DEMO_OUT)/demo.validate.json \
-	  > $(DEMO_OUT)/demo.validate.txt; rc=$$?; tail -2 $(DEMO_OUT)/demo.validate.txt; [ $$rc -le 1 ] || exit $$rc
-	@echo "demo outputs in $(DEMO_OUT)/: demo.morphcut.city.json, demo.morphcut.report.json, demo.morphcut.csv," \
-	  "demo.validate.json (validation report; invalid objects listed in demo.validate.txt)"
+	@# every file checked: every part a valid Solid by val3dity's rules, each level tiling each building's cell
+	@for f in $(DEMO_OUT)/demo.morphcut.city.json $(DEMO_OUT)/demo.morphcut.level-*.city.json; do \
+	  $(BUILD)/tools/morphcut-city validate $$f > $$f.validate.txt; rc=$$?; tail -2 $$f.validate.txt | head -1; \
+	  [ $$rc -le 1 ] || exit $$rc; done
+	@echo "demo outputs in $(DEMO_OUT)/: demo.morphcut.city.json (the input annotated per building)," \
+	  "demo.morphcut.level-<t>.city.json (one city per level: the parts are the BuildingParts)," \
+	  "demo.morphcut.report.json, demo.morphcut.csv; validation in *.validate.txt"
 	@# the run wrote the HTML page beside its report (morphcut-city --no-html turns it off)
 	@echo "open the page (offline, self-contained): $(abspath $(DEMO_OUT))/demo.morphcut.html"
 

@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/hull.hpp"
 #include "core/search.hpp"
@@ -750,9 +751,10 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
 }
 
 namespace {
-PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
+PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid,
+                         const LevelSurfaceContext& level = {}) {
   const CellComplex& cx = *pre.complex;
-  const Surface s = extract_surface(cx, cells, solid);
+  const Surface s = extract_surface(cx, cells, solid, level);
   PolygonMesh labels;  // the input's labels plus ClosureSurface for cut faces
   labels.semantic_labels = pre.labels;
   const int32_t closure = labels.label_index("ClosureSurface");
@@ -762,6 +764,8 @@ PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& c
   });
   m.semantic_labels = std::move(labels.semantic_labels);
   for (Vec3& v : m.vertices) v = pre.to_input(v);
+  for (size_t i = 0; i < s.faces.size(); ++i)
+    if (s.faces[i].neighbour != CellComplex::kNone) m.faces[i].neighbour = static_cast<int32_t>(s.faces[i].neighbour);
   return m;
 }
 
@@ -777,6 +781,25 @@ std::vector<uint32_t> all_singleton_cells(const Preprocessed& pre) {
 PolygonMesh part_mesh(const Preprocessed& pre, const PartResult& part) {
   const std::vector<uint32_t> solid = all_singleton_cells(pre);
   return surface_mesh(pre, current_leaves(*pre.complex, part.cells), &solid);
+}
+
+std::vector<PolygonMesh> level_part_meshes(const Preprocessed& pre, const std::vector<PartResult>& parts) {
+  const CellComplex& cx = *pre.complex;
+  const std::vector<uint32_t> solid = all_singleton_cells(pre);
+  std::vector<std::vector<uint32_t>> leaves;
+  std::unordered_map<uint32_t, uint32_t> part_of;
+  for (size_t p = 0; p < parts.size(); ++p) {
+    leaves.push_back(current_leaves(cx, parts[p].cells));
+    for (uint32_t c : leaves.back()) part_of[c] = static_cast<uint32_t>(p);
+  }
+  // The corners of every part's faces, then every part again keeping them.
+  std::unordered_set<uint32_t> corners;
+  for (const auto& l : leaves)
+    for (const auto& f : extract_surface(cx, l, &solid, {&part_of, nullptr}).faces)
+      for (const auto& r : f.rings) corners.insert(r.begin(), r.end());
+  std::vector<PolygonMesh> out;
+  for (const auto& l : leaves) out.push_back(surface_mesh(pre, l, &solid, {&part_of, &corners}));
+  return out;
 }
 
 PolygonMesh singleton_mesh(const Preprocessed& pre) {

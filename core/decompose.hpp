@@ -51,6 +51,10 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
 // The closed surface of one part in input coordinates: coplanar faces merged, cut faces labelled
 // "ClosureSurface", others with the label of the input plane they lie on.
 PolygonMesh part_mesh(const Preprocessed& pre, const PartResult& part);
+// Every part of one level, written to fit its neighbours exactly (docs/output-format.md §Validity):
+// a face shared by two parts is the same polygon in both (Polygon::neighbour names the other
+// part), and every corner of any part's face is a vertex of each ring passing through it.
+std::vector<PolygonMesh> level_part_meshes(const Preprocessed& pre, const std::vector<PartResult>& parts);
 // The singleton cell (all components) as a mesh in input coordinates.
 PolygonMesh singleton_mesh(const Preprocessed& pre);
 

@@ -15,6 +15,8 @@ struct Polygon {
   std::vector<std::vector<uint32_t>> rings;
   // Index into PolygonMesh::semantic_labels, or -1 when the face carries no semantic surface.
   int32_t semantic = -1;
+  // For a part of a level (level_part_meshes): the part on the other side of this face, or -1.
+  int32_t neighbour = -1;
 };
 
 struct PolygonMesh {

@@ -328,7 +328,8 @@ Mesh to_mesh(const TriangleShell& s, bool& ok) {
 }
 
 // Edge and vertex topology of the rings: closed, 2-manifold, consistently oriented, connected.
-void check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces, const std::vector<Vec3>& pts,
+// True when every edge is used by two faces in opposite directions.
+bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces, const std::vector<Vec3>& pts,
                     ErrorLog& log) {
   std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> directed;  // edge -> faces
   for (size_t fi = 0; fi < faces.size(); ++fi)
@@ -367,22 +368,26 @@ void check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces
   for (uint32_t f = 0; f < faces.size(); ++f) components.insert(root(f));
   if (components.size() > 1)
     log.add(solid_code::kMultipleComponents, std::to_string(components.size()) + " separate groups of faces");
-  if (!edges_ok) return;
-  // Vertex umbrellas: the face corners at a vertex must link its edges into one cycle.
+  return edges_ok;
+}
+
+// Vertex umbrellas: the triangle corners at a vertex must link its edges into one cycle. On the
+// faces' triangles, not their rings: a face whose hole touches its outer ring at a vertex has
+// ring corners there that are not the face's wedges around it.
+void check_vertex_fans(const std::vector<std::array<uint32_t, 3>>& triangles, const std::vector<Vec3>& pts, ErrorLog& log) {
   std::map<uint32_t, std::map<uint32_t, uint32_t>> fan;  // vertex -> neighbour -> union-find parent
   auto find = [](std::map<uint32_t, uint32_t>& uf, uint32_t x) {
     while (uf[x] != x) x = uf[x] = uf[uf[x]];
     return x;
   };
-  for (const auto& face : faces)
-    for (const auto& ring : face)
-      for (size_t i = 0; i < ring.size(); ++i) {
-        const uint32_t v = ring[i], prev = ring[(i + ring.size() - 1) % ring.size()], next = ring[(i + 1) % ring.size()];
-        auto& uf = fan[v];
-        uf.try_emplace(prev, prev);
-        uf.try_emplace(next, next);
-        uf[find(uf, prev)] = find(uf, next);
-      }
+  for (const auto& t : triangles)
+    for (size_t i = 0; i < 3; ++i) {
+      const uint32_t v = t[i], prev = t[(i + 2) % 3], next = t[(i + 1) % 3];
+      auto& uf = fan[v];
+      uf.try_emplace(prev, prev);
+      uf.try_emplace(next, next);
+      uf[find(uf, prev)] = find(uf, next);
+    }
   for (auto& [v, uf] : fan) {
     std::set<uint32_t> roots;
     for (auto& [n, p] : uf) roots.insert(find(uf, n));
@@ -428,6 +433,62 @@ bool triangulate_polygon(const std::vector<std::vector<uint32_t>>& rings, const 
     return false;
   }
   return out.size() > before;
+}
+
+bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
+                                   std::vector<std::array<uint32_t, 3>>& out) {
+  if (rings.empty() || rings[0].size() < 3) return false;
+  const Vec3 n = newell(rings[0], pts);
+  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+  if (!(ax + ay + az > 0)) return false;
+  const int drop = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
+  std::vector<uint32_t> used;
+  for (const auto& r : rings) used.insert(used.end(), r.begin(), r.end());
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  CDT cdt;
+  std::unordered_map<uint32_t, CDT::Vertex_handle> handle;
+  try {
+    for (uint32_t id : used) {
+      CDT::Vertex_handle h = cdt.insert(K::Point_2(pts[id][u], pts[id][v]));
+      h->info() = id;
+      handle[id] = h;
+    }
+    for (const auto& ring : rings)
+      for (size_t i = 0; i < ring.size(); ++i) {
+        CDT::Vertex_handle a = handle[ring[i]], b = handle[ring[(i + 1) % ring.size()]];
+        if (a != b) cdt.insert_constraint(a, b);
+      }
+  } catch (const CDT::Intersection_of_constraints_exception&) {
+    return false;
+  }
+  if (cdt.number_of_vertices() != used.size()) return false;  // two points project onto one
+  mark_domains(cdt);
+  // CCW in (u, v) is CCW about +axis; the ring turns about n, whose component on the axis has
+  // the sign of n[drop].
+  const bool flip = n[drop] < 0;
+  const size_t before = out.size();
+  for (auto fh : cdt.finite_face_handles()) {
+    if (fh->info().nesting % 2 != 1) continue;
+    const uint32_t a = fh->vertex(0)->info(), b = fh->vertex(1)->info(), c = fh->vertex(2)->info();
+    out.push_back(flip ? std::array<uint32_t, 3>{a, c, b} : std::array<uint32_t, 3>{a, b, c});
+  }
+  return out.size() > before;
+}
+
+bool exactly_coplanar(const std::vector<Vec3>& pts) {
+  if (pts.size() <= 3) return true;
+  std::vector<K::Point_3> p;
+  for (const auto& q : pts) p.emplace_back(q.x, q.y, q.z);
+  size_t j = 1;
+  while (j < p.size() && p[j] == p[0]) ++j;
+  size_t k = j + 1;
+  while (k < p.size() && CGAL::collinear(p[0], p[j], p[k])) ++k;
+  if (k >= p.size()) return true;  // all on one line
+  for (size_t i = 0; i < p.size(); ++i)
+    if (CGAL::orientation(p[0], p[j], p[k], p[i]) != CGAL::COPLANAR) return false;
+  return true;
 }
 
 SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, bool measures) {
@@ -538,8 +599,9 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
 
   // Shell (3xx): topology on the ring edges, then triangles for volume and intersections.
   if (faces.size() < 4) log.add(solid_code::kTooFewPolygons, std::to_string(faces.size()) + " valid faces (at least 4 needed)");
-  check_topology(faces, pts, log);
+  const bool edges_ok = check_topology(faces, pts, log);
   for (size_t fi = 0; fi < faces.size(); ++fi) triangulate_face(faces[fi], pts, normals[fi], fi, log, out.shell.triangles);
+  if (edges_ok) check_vertex_fans(out.shell.triangles, pts, log);
 
   // Non-planarity within reason does not stop the shell checks (the faces are triangulated).
   const bool topology_ok = log.only({solid_code::kNonPlanarPolygon, solid_code::kNonPlanarNormals});

@@ -75,6 +75,14 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol = {}
 // Delaunay, holes left out); triangles turn like the outer ring. False when its rings cross.
 bool triangulate_polygon(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
                          std::vector<std::array<uint32_t, 3>>& out);
+// The same, canonical: projected by dropping the dominant axis of the outer ring's normal (no
+// arithmetic on the coordinates) and with the points inserted in index order, so that a polygon
+// and its reversed twin (the face two parts share) get the same triangles. Triangles turn like
+// the outer ring.
+bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
+                                   std::vector<std::array<uint32_t, 3>>& out);
+// Do the points lie exactly on one plane (exact predicates on the doubles)?
+bool exactly_coplanar(const std::vector<Vec3>& pts);
 
 // What two solids with closed_manifold have in common: its volume (m³; 0 when they only touch)
 // and surface area (m²; 2 x volume / area is the mean thickness, which tells a sliver from a real

@@ -74,16 +74,21 @@ std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_use
   return uses;
 }
 
-Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
+Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid,
+                        const LevelSurfaceContext& level) {
   Surface s;
-  // 1. Directed boundary edges grouped by (plane, outward side); opposite pairs cancel, which
-  //    merges coplanar facets into polygons (the complex is conforming, so edges match exactly).
-  std::map<std::tuple<uint32_t, bool, bool>, std::unordered_map<uint64_t, int>> groups;
+  // 1. Directed boundary edges grouped by (plane, outward side, cut, neighbouring part); opposite
+  //    pairs cancel, which merges coplanar facets into polygons (the complex is conforming, so
+  //    edges match exactly).
+  std::map<std::tuple<uint32_t, bool, bool, uint32_t>, std::unordered_map<uint64_t, int>> groups;
   for (auto [f, c] : boundary_facets(cx, cells)) {
     const bool plus = cx.facet(f).back == c;
     const uint32_t other = cx.other_side(f, c);
     const bool cut = solid && other != CellComplex::kNone && std::binary_search(solid->begin(), solid->end(), other);
-    auto& edges = groups[{cx.facet(f).plane, plus, cut}];
+    uint32_t neighbour = CellComplex::kNone;
+    if (cut && level.part_of)
+      if (auto it = level.part_of->find(other); it != level.part_of->end()) neighbour = it->second;
+    auto& edges = groups[{cx.facet(f).plane, plus, cut, neighbour}];
     const auto loop = cx.outward_loop(f, c);
     for (size_t i = 0; i < loop.size(); ++i) {
       const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
@@ -103,6 +108,7 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
   struct RawFace {
     uint32_t plane;
     bool plus, cut;
+    uint32_t neighbour;
     std::vector<std::vector<uint32_t>> loops;
   };
   std::vector<RawFace> raw;
@@ -111,7 +117,7 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
     for (const auto& [e, n] : edges)
       for (int i = 0; i < n; ++i) next[uint32_t(e >> 32)].push_back(uint32_t(e & 0xffffffffu));
     for (auto& [a, bs] : next) std::sort(bs.begin(), bs.end(), std::greater<>());
-    RawFace rf{std::get<0>(key), std::get<1>(key), std::get<2>(key), {}};
+    RawFace rf{std::get<0>(key), std::get<1>(key), std::get<2>(key), std::get<3>(key), {}};
     Vec3 normal = cx.planes()[rf.plane].n;
     if (!rf.plus) normal = -normal;
     const Projector pr(normal);
@@ -161,7 +167,7 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
   for (auto& [v, ns] : nbrs) {
     std::sort(ns.begin(), ns.end());
     ns.erase(std::unique(ns.begin(), ns.end()), ns.end());
-    if (ns.size() == 2 && cx.collinear(ns[0], v, ns[1])) drop.insert(v);
+    if (ns.size() == 2 && cx.collinear(ns[0], v, ns[1]) && !(level.keep && level.keep->count(v))) drop.insert(v);
   }
   // 4. Outer rings vs holes by orientation about the outward normal; holes go to their outer ring.
   for (auto& rf : raw) {
@@ -177,7 +183,7 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
       (signed_area_2d(kept, cx, pr) >= 0 ? outers : holes).push_back(std::move(kept));
     }
     std::vector<SurfaceFace> faces;
-    for (auto& o : outers) faces.push_back({{std::move(o)}, rf.plane, rf.plus, rf.cut});
+    for (auto& o : outers) faces.push_back({{std::move(o)}, rf.plane, rf.plus, rf.cut, rf.neighbour});
     for (auto& h : holes) {
       size_t target = 0;
       if (faces.size() > 1) {

@@ -4,6 +4,8 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "core/complex.hpp"
@@ -16,6 +18,7 @@ struct SurfaceFace {
   uint32_t plane = CellComplex::kNone;       // registry plane the face lies on
   bool outward_is_plus = true;               // outward normal = +plane normal?
   bool cut = false;                          // interior face: the other side is in the solid
+  uint32_t neighbour = CellComplex::kNone;   // the part across a cut face (LevelSurfaceContext)
 };
 
 struct Surface {
@@ -71,8 +74,18 @@ std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
   return out;
 }
 
+// For the parts of one level written side by side (docs/output-format.md §Validity): a cut face
+// is split by the part across it, so that two neighbours write their common face as the same
+// polygon, and the vertices in `keep` (the corners of any part's faces) stay on every ring that
+// passes through them, so that no part has a T-junction where its neighbour has a corner.
+struct LevelSurfaceContext {
+  const std::unordered_map<uint32_t, uint32_t>* part_of = nullptr;  // leaf cell -> part index
+  const std::unordered_set<uint32_t>* keep = nullptr;                // vertices never dropped
+};
+
+// `neighbour` of a face (SurfaceFace::neighbour): the part across a cut face when `level` is given.
 Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells,
-                        const std::vector<uint32_t>* solid = nullptr);
+                        const std::vector<uint32_t>* solid = nullptr, const LevelSurfaceContext& level = {});
 
 // Converts a surface to a PolygonMesh in double coordinates shifted by `offset`.
 // `label_of_face(const SurfaceFace&)` gives each face its semantic label index (or -1).

@@ -45,7 +45,7 @@ json outcome_to_json(const BuildingOutcome& b) {
                       {"fallback", l.fallback},
                       {"max_degree", l.max_degree},
                       {"end_parts", l.end_parts},
-                      {"cluster_steps", l.cluster_steps}});
+                      {"grid_repair", l.grid_repair}});
   const Sizes& s = b.size;
   const Measures& m = b.measures;
   json centroid = nullptr;
@@ -108,7 +108,7 @@ void outcome_from_json(const json& j, BuildingOutcome& b) {
     l.fallback = lj.at("fallback").get<std::string>();
     l.max_degree = lj.at("max_degree").get<int>();
     l.end_parts = lj.at("end_parts").get<int>();
-    l.cluster_steps = lj.at("cluster_steps").get<int>();
+    l.grid_repair = lj.at("grid_repair").get<std::string>();
     b.levels.push_back(std::move(l));
   }
   const json& sj = j.at("sizes");

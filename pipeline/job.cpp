@@ -116,12 +116,13 @@ struct EncodedLevel {
   std::vector<PolygonMesh> meshes;
   LevelOutcome lv;      // the geometric fields; the search fields are the caller's
   size_t dropped_faces = 0, repaired_parts = 0, split_faces = 0;
-  int cluster_steps = 0;  // the vertex clustering the level needed (grid steps; 0 = none)
+  std::string grid_repair;  // LevelOutcome::grid_repair
   std::string defect;     // non-empty: a part fails the checks, and nothing of the level is kept
 };
 
 EncodedLevel encode_level(const std::string& building, size_t i, double threshold, const std::vector<PartResult>& parts,
-                          const Preprocessed& pre, const std::string& lod, const std::string& version, VertexPool& pool) {
+                          const Preprocessed& pre, const std::string& lod, const std::string& version, VertexPool& pool,
+                          bool conforming) {
   EncodedLevel e;
   e.lv.index = i;
   e.lv.threshold = threshold;
@@ -131,9 +132,13 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
     return e;
   }
   double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
+  std::vector<PolygonMesh> meshes;
+  if (conforming) meshes = level_part_meshes(pre, parts);
+  else
+    for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
   for (size_t j = 0; j < parts.size(); ++j) {
     const PartResult& part = parts[j];
-    PolygonMesh mesh = part_mesh(pre, part);
+    PolygonMesh& mesh = meshes[j];
     double hull_volume = part.hull_volume;
     if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton parts
     const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
@@ -174,26 +179,38 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   return e;
 }
 
-// A level's parts encoded on the output grid; when a part stays invalid after its own repairs
-// (pipeline/part_repair.hpp), the level's vertices are clustered ever more coarsely (vertices
-// within 1, 2, then 4 grid steps become one) and the whole level is encoded again, so that every
-// part sharing a moved vertex moves with it. On failure the pool is back at its mark.
+// A level's parts encoded on the output grid, as meshes that fit their neighbours exactly
+// (level_part_meshes). When a part stays invalid after its own repairs (pipeline/part_repair.hpp):
+//   1. the level's vertices are clustered ever more coarsely (vertices within 1, 2, then 4 grid
+//      steps become one) and the whole level is encoded again, so that every part sharing a
+//      moved vertex moves with it;
+//   2. each part is encoded from its own mesh (no vertex kept for a neighbour's corner): a kept
+//      vertex rounded off its straight edge can force a sliver triangle that folds into the part.
+//      Valid parts, but a neighbour's corner may then stand a fraction of a grid step inside it.
+// On failure the pool is back at its mark and the first defect is reported.
 EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
                                   const std::vector<PartResult>& parts, const Preprocessed& pre, const std::string& lod,
                                   const std::string& version, VertexPool& pool) {
   const size_t mark = pool.mark();
-  EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool);
-  if (e.defect.empty() || !pool.can_cluster()) return e;
+  EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
+  if (e.defect.empty()) return e;
   const std::string first = e.defect;
-  for (int steps : {1, 2, 4}) {
-    pool.rollback(mark);
-    pool.cluster(steps, mark);
-    e = encode_level(building, i, threshold, parts, pre, lod, version, pool);
-    pool.cluster(0, 0);
-    if (e.defect.empty()) {
-      e.cluster_steps = steps;
-      return e;
+  if (pool.can_cluster())
+    for (int steps : {1, 2, 4}) {
+      pool.rollback(mark);
+      pool.cluster(steps, mark);
+      e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
+      pool.cluster(0, 0);
+      if (e.defect.empty()) {
+        e.grid_repair = "cluster " + std::to_string(steps);
+        return e;
+      }
     }
+  pool.rollback(mark);
+  e = encode_level(building, i, threshold, parts, pre, lod, version, pool, false);
+  if (e.defect.empty()) {
+    e.grid_repair = "non-conforming";
+    return e;
   }
   pool.rollback(mark);
   e.defect = first;
@@ -300,7 +317,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     out.size.dropped_faces += e.dropped_faces;
     out.size.parts_repaired += e.repaired_parts;
     out.size.split_faces += e.split_faces;
-    lv.cluster_steps = e.cluster_steps;
+    lv.grid_repair = e.grid_repair;
     for (auto& s : e.staged) staged.push_back(std::move(s));
     if (first_level_meshes.empty()) first_level_meshes = std::move(e.meshes);
     out.levels.push_back(std::move(lv));

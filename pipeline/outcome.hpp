@@ -31,9 +31,10 @@ struct LevelOutcome {
   std::string fallback;
   int max_degree = 0;        // part adjacency graph
   int end_parts = 0;         // parts with exactly one neighbour
-  // Vertices within this many output grid steps were made one so that every part passes the
-  // checks (0 = none needed; docs/output-format.md §Validity).
-  int cluster_steps = 0;
+  // What the level needed beyond per-part repairs for every part to pass the checks on the
+  // output grid: "" (nothing), "cluster N" (vertices within N grid steps made one), or
+  // "non-conforming" (each part's mesh on its own; docs/output-format.md §Validity).
+  std::string grid_repair;
 };
 
 struct Timings {

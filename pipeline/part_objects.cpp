@@ -71,6 +71,7 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
   for (const Polygon& f : part.faces) {
     GridFace g;
     g.semantic = f.semantic;
+    g.neighbour = f.neighbour;
     for (size_t r = 0; r < f.rings.size(); ++r) {
       std::vector<int64_t> ring;
       for (uint32_t v : f.rings[r]) {
@@ -88,10 +89,11 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
     }
     faces.push_back(std::move(g));
   }
+  const size_t bent = triangulate_bent_shared_faces(faces, pool.vertices());
   PartRepair checked = check_and_repair(std::move(faces), pool.vertices());
   out.defect = std::move(checked.defect);
   out.repaired = checked.repaired;
-  out.split_faces = checked.split_faces;
+  out.split_faces = checked.split_faces + bent;
 
   json surfaces = json::array(), values = json::array(), boundaries = json::array();
   std::vector<int> surface_of_label(part.semantic_labels.size(), -1);

@@ -45,6 +45,7 @@ class VertexPool {
 struct GridFace {
   std::vector<std::vector<int64_t>> rings;
   int32_t semantic = -1;  // into the part mesh's semantic_labels
+  int32_t neighbour = -1; // the part sharing this face (Polygon::neighbour), or -1
 };
 
 struct EncodedSolid {

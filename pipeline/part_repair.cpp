@@ -95,7 +95,7 @@ std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>&
   for (const auto& ring : f.rings)
     for (auto& loop : simple_loops(ring)) (dot(ring_normal(loop, pool), n) > 0 ? outers : holes).push_back(std::move(loop));
   std::vector<GridFace> out;
-  for (auto& o : outers) out.push_back({{std::move(o)}, f.semantic});
+  for (auto& o : outers) out.push_back({{std::move(o)}, f.semantic, f.neighbour});
   if (out.empty()) return {f};
   for (auto& h : holes) {
     size_t host = 0;
@@ -112,29 +112,25 @@ std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>&
   return out;
 }
 
-// Repair 2: the face as triangles in its plane (each a face of its own). Empty when its rings
-// cross each other.
+// Repair 2: the face as triangles (each a face of its own), canonically, so that a face two
+// parts share gets the same triangles in both. Empty when its rings cross each other.
 std::vector<GridFace> triangles_of(const GridFace& f, const std::vector<Vec3>& pool) {
+  std::vector<int64_t> ids;  // sorted: the local order is the pool order in every part
+  for (const auto& ring : f.rings) ids.insert(ids.end(), ring.begin(), ring.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   std::vector<Vec3> pts;
-  std::vector<int64_t> ids;
+  for (int64_t id : ids) pts.push_back(pool[id]);
   std::vector<std::vector<uint32_t>> rings;
   for (const auto& ring : f.rings) {
     std::vector<uint32_t> r;
-    for (int64_t id : ring) {
-      auto at = std::find(ids.begin(), ids.end(), id);
-      if (at == ids.end()) {
-        ids.push_back(id);
-        pts.push_back(pool[id]);
-        at = ids.end() - 1;
-      }
-      r.push_back(static_cast<uint32_t>(at - ids.begin()));
-    }
+    for (int64_t id : ring) r.push_back(static_cast<uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin()));
     rings.push_back(std::move(r));
   }
   std::vector<std::array<uint32_t, 3>> tris;
-  if (!triangulate_polygon(rings, pts, tris)) return {};
+  if (!triangulate_polygon_canonical(rings, pts, tris)) return {};
   std::vector<GridFace> out;
-  for (const auto& t : tris) out.push_back({{{ids[t[0]], ids[t[1]], ids[t[2]]}}, f.semantic});
+  for (const auto& t : tris) out.push_back({{{ids[t[0]], ids[t[1]], ids[t[2]]}}, f.semantic, f.neighbour});
   return out;
 }
 
@@ -148,10 +144,30 @@ bool face_repairable(int code) {
 
 }  // namespace
 
+size_t triangulate_bent_shared_faces(std::vector<GridFace>& faces, const std::vector<Vec3>& pool) {
+  size_t replaced = 0;
+  std::vector<GridFace> out;
+  for (GridFace& f : faces) {
+    if (f.neighbour >= 0 && !(f.rings.size() == 1 && f.rings[0].size() == 3)) {
+      std::vector<Vec3> pts;
+      for (const auto& ring : f.rings)
+        for (int64_t id : ring) pts.push_back(pool[id]);
+      if (!exactly_coplanar(pts)) {
+        std::vector<GridFace> tris = triangles_of(f, pool);
+        if (!tris.empty()) {
+          ++replaced;
+          for (auto& t : tris) out.push_back(std::move(t));
+          continue;
+        }
+      }
+    }
+    out.push_back(std::move(f));
+  }
+  faces = std::move(out);
+  return replaced;
+}
+
 std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool, SolidCheck* check) {
-  Shell shell;
-  for (const auto& f : faces) shell.push_back(f.rings);
-  if (std::string d = closed_shell_defect(shell); !d.empty()) return "not a closed 2-manifold (" + d + ")";
   const LocalMesh m = as_mesh(faces, pool);
   SolidCheck c = check_solid(m.mesh, val3dity_tolerances(), false);
   std::string defect;

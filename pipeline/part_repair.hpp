@@ -26,6 +26,12 @@ struct PartRepair {
 // `pool` holds the coordinates of the ids in `faces`.
 PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool);
 
+// A face shared with another part that is no longer exactly planar on the grid is written as
+// triangles, the same ones in both parts (canonical triangulation), so that the two surfaces
+// coincide and the parts' interiors stay apart (val3dity's 601 test is exact). Returns the number
+// of faces replaced.
+size_t triangulate_bent_shared_faces(std::vector<GridFace>& faces, const std::vector<Vec3>& pool);
+
 // The checks alone: val3dity's rules on the faces as they are (first error, or empty).
 std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool,
                               SolidCheck* check = nullptr);

@@ -48,7 +48,7 @@ json building_report(const BuildingOutcome& b) {
                {"max_degree", l.max_degree},
                {"end_parts", l.end_parts}};
     if (!l.fallback.empty()) lj["fallback"] = l.fallback;
-    if (l.cluster_steps) lj["cluster_steps"] = l.cluster_steps;
+    if (!l.grid_repair.empty()) lj["grid_repair"] = l.grid_repair;
     levels.push_back(std::move(lj));
   }
   json level_secs = json::array();

@@ -55,23 +55,23 @@ t = json.load(open(sys.argv[1]))["total"]
 print(t["our_errors"], t["our_errors_by_code"].get("601", 0), t["input_errors"])' "$1"
 }
 
-# Without --val3dity the lines are exactly as before (maxdev last, unpadded).
 v3_header=""; row='%-58s %6s %-24s %6s %6s %7s %8s %8s %s%s\n'
 if [ "$val3dity" = 1 ]; then
   v3_header="$(printf ' %7s %7s %8s' v3_ours of_601 v3_input)"; row='%-58s %6s %-24s %6s %6s %7s %8s %8s %8s%s\n'
 fi
 # shellcheck disable=SC2059  # the row format is chosen above
-printf "$row" file bldgs "ok/partial/failed/skip" parts valid invalid share exact maxdev "$v3_header"
-tot_parts=0; tot_valid=0; tot_invalid_bldg=0; bad_files=0
+printf "$row" file bldgs "ok/partial/failed/skip" parts valid invalid share exact maxdev \
+  "$(printf ' %8s %6s %8s' repaired grid fallback)$v3_header"
+tot_parts=0; tot_valid=0; tot_invalid_bldg=0; bad_files=0; tot_rep=0; tot_grid=0; tot_fb=0
 tot_v3_ours=0; tot_v3_601=0; tot_v3_input=0; v3_failed=0
 for rel in "${files[@]}"; do
   [ -z "$only" ] || [[ "$rel" == *"$only"* ]] || continue
   name="$(echo "$rel" | tr '/' '_')"
   ext=".city.json"; [[ "$rel" == *.jsonl ]] && ext=".city.jsonl"
   out="$work/${name%.*}.morphcut$ext"
-  args=("$data/$rel" -o "$out" --threads "$threads" --no-report --no-summary)
+  args=("$data/$rel" -o "$out" --threads "$threads" --report "$work/${name}.report.json" --no-summary --no-html)
   # Level files of an earlier run would otherwise be validated again with this run's output.
-  [ "$val3dity" = 0 ] || rm -f "${out%"$ext"}".level-*"$ext"
+  rm -f "${out%"$ext"}".level-*"$ext"
   [ -z "$config" ] || args+=(--config "$config")
   set +e
   "$bin" "${args[@]}" 2> "$work/${name}.run.log"
@@ -83,22 +83,41 @@ for rel in "${files[@]}"; do
   fi
   statuses="$(grep -o '[0-9]* ok, [0-9]* partial, [0-9]* failed, [0-9]* skipped' "$work/${name}.run.log" | tail -1 |
               awk '{ print $1 "/" $3 "/" $5 "/" $7 }')"
-  set +e
-  "$bin" validate "$out" --json "$work/${name}.validate.json" > "$work/${name}.validate.txt"
-  vrc=$?
-  set -e
-  grep -v -e '^VALID$' -e '^INVALID$' -e "^$out: " "$work/${name}.validate.txt" | sed "s|^|$rel: |" >> "$work/failures.txt" || true
-  if [ "$vrc" -gt 1 ]; then
-    printf '%-58s validate failed (exit %d)\n' "$rel" "$vrc"
+  # Every file the run wrote: the annotated input and one city per level (docs/output-format.md).
+  outs=("$out")
+  for f in "${out%"$ext"}".level-*"$ext"; do [ -f "$f" ] && outs+=("$f"); done
+  parts=0; valid=0; invalid=0; vfail=0; overlap_tests=0; maxdev=0; invalid_bldg=0
+  for o in "${outs[@]}"; do
+    vj="$work/$(basename "$o").validate.json"
+    set +e
+    "$bin" validate "$o" --json "$vj" > "$work/$(basename "$o").validate.txt"
+    vrc=$?
+    set -e
+    grep -v -e '^VALID$' -e '^INVALID$' -e "^$o: " "$work/$(basename "$o").validate.txt" | sed "s|^|$rel: |" >> "$work/failures.txt" || true
+    if [ "$vrc" -gt 1 ]; then vfail=1; continue; fi
+    parts=$((parts + $(count parts "$vj"))); valid=$((valid + $(count valid_parts "$vj")))
+    invalid=$((invalid + $(count invalid_parts "$vj"))); overlap_tests=$((overlap_tests + $(count overlap_tests "$vj")))
+    invalid_bldg=$((invalid_bldg + $(count invalid_buildings "$vj")))
+    maxdev="$(awk -v a="$maxdev" -v b="$(count max_volume_deviation "$vj")" 'BEGIN { print (b > a ? b : a) }')"
+    [ "$o" = "$out" ] && j="$vj"
+  done
+  if [ "$vfail" = 1 ]; then
+    printf '%-58s validate failed\n' "$rel"
     bad_files=$((bad_files + 1)); continue
   fi
-  j="$work/${name}.validate.json"
-  parts=$(count parts "$j"); valid=$(count valid_parts "$j"); invalid=$(count invalid_parts "$j")
+  # Repairs on the output grid, from the run report: parts repaired, levels that needed vertex
+  # clustering or non-conforming meshes, levels that fell back.
+  read -r rep_parts grid_levels fallbacks < <(python3 -c '
+import json, sys
+r = json.load(open(sys.argv[1]))
+b = [x for x in r["buildings"] if "sizes" in x]
+print(sum(x["sizes"].get("parts_repaired", 0) for x in b),
+      sum(1 for x in b for l in x.get("levels", []) if l.get("grid_repair")),
+      sum(1 for x in b for l in x.get("levels", []) if l.get("fallback")))' "$work/${name}.report.json")
+  tot_rep=$((tot_rep + rep_parts)); tot_grid=$((tot_grid + grid_levels)); tot_fb=$((tot_fb + fallbacks))
   share="-"; [ "$parts" -gt 0 ] && share="$(awk -v v="$valid" -v p="$parts" 'BEGIN { printf "%.2f%%", 100 * v / p }')"
   v3_cols=""
   if [ "$val3dity" = 1 ]; then
-    outs=("$out")
-    for f in "${out%"$ext"}".level-*"$ext"; do [ -f "$f" ] && outs+=("$f"); done
     set +e
     python3 "$here/tools/val3dity/check.py" --val3dity "$v3bin" --jobs "$threads" --report-dir "$work/${name}.val3dity" \
       --json "$work/${name}.val3dity.json" "${outs[@]}" > "$work/${name}.val3dity.txt" 2>&1
@@ -116,13 +135,15 @@ for rel in "${files[@]}"; do
   fi
   # shellcheck disable=SC2059
   printf "$row" "$rel" "$(count buildings "$j")" "$statuses" "$parts" "$valid" \
-    "$invalid" "$share" "$(count overlap_tests "$j")" "$(count max_volume_deviation "$j")" "$v3_cols"
+    "$invalid" "$share" "$overlap_tests" "$maxdev" "$(printf ' %8s %6s %8s' "$rep_parts" "$grid_levels" "$fallbacks")$v3_cols"
   tot_parts=$((tot_parts + parts)); tot_valid=$((tot_valid + valid))
-  tot_invalid_bldg=$((tot_invalid_bldg + $(count invalid_buildings "$j")))
+  tot_invalid_bldg=$((tot_invalid_bldg + invalid_bldg))
 done
 share="-"; [ "$tot_parts" -gt 0 ] && share="$(awk -v v="$tot_valid" -v p="$tot_parts" 'BEGIN { printf "%.2f%%", 100 * v / p }')"
 echo "total: $tot_valid of $tot_parts output parts valid ($share); $tot_invalid_bldg buildings with tiling errors;" \
      "$bad_files files not processed; errors in $work/failures.txt"
+echo "repairs: $tot_rep parts repaired on the output grid; $tot_grid levels needed clustering or non-conforming meshes;" \
+     "$tot_fb levels fell back"
 if [ "$val3dity" = 1 ]; then
   echo "val3dity: $tot_v3_ours errors on our parts ($tot_v3_601 of them 601 overlaps), $tot_v3_input on the input's" \
        "own geometry; $v3_failed files val3dity could not check"

@@ -33,7 +33,7 @@ CliRun run_cli(const TempDir& dir, const std::string& input, const std::string& 
                           (dir / ("out" + out_ext)) + " --report " + (dir / "report.json") + " --summary " +
                           (dir / "summary.csv"));
   if (fs::exists(dir / "report.json")) r.report = json::parse(slurp(dir / "report.json"));
-  if (fs::exists(dir / ("out" + out_ext))) r.output = load_city(dir / ("out" + out_ext));
+  if (fs::exists(dir / ("out" + out_ext))) r.output = load_outputs(dir / ("out" + out_ext));
   if (fs::exists(dir / "summary.csv")) r.csv = parse_csv(slurp(dir / "summary.csv"));
   return r;
 }

@@ -58,6 +58,7 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("2 ok"), std::string::npos) << r.output;  // the final summary line
   EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.city.jsonl"));
+  EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.level-0.1.city.jsonl"));  // one city per level
   EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.report.json"));
   EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.csv"));
   const json report = json::parse(slurp(dir / "3dbag_b2.morphcut.report.json"));
@@ -66,6 +67,9 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
   // The output passes the binary's own validator (exit 0 = every object valid).
   const ProcessResult v = run_command(cli_path() + " validate " + (dir / "3dbag_b2.morphcut.city.jsonl"));
   EXPECT_EQ(v.exit_code, 0) << v.output;
+  const ProcessResult vl = run_command(cli_path() + " validate " + (dir / "3dbag_b2.morphcut.level-0.1.city.jsonl"));
+  EXPECT_EQ(vl.exit_code, 0) << vl.output;
+  EXPECT_EQ(report["outputs"]["levels"][0]["cityjson"], "3dbag_b2.morphcut.level-0.1.city.jsonl");
   // --quiet: nothing on stderr for a clean run.
   const ProcessResult q = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
                                       " --config quick.yaml -q -o q.city.jsonl --no-report --no-summary");

@@ -33,7 +33,7 @@ Outcome run(const std::string& input, const mc::test::TempDir& dir, Params p,
   opt.before_job = std::move(hook);
   Outcome r;
   r.result = run_city(opt, p, RunConfig{});
-  r.output = mc::test::load_city(opt.output);
+  r.output = mc::test::load_outputs(opt.output);
   r.report = json::parse(mc::test::slurp(opt.report));
   return r;
 }
@@ -124,7 +124,7 @@ TEST(FaultTolerance, ABuildingThatCrashesTheProcessIsSkippedByTheNextRun) {
   const json& b = building_report(report, victim);
   EXPECT_EQ(b["status"], "failed");
   EXPECT_NE(b["reason"].get<std::string>().find("crashed an earlier run"), std::string::npos) << b["reason"];
-  const json out = mc::test::load_city(opt.output);
+  const json out = mc::test::load_outputs(opt.output);
   const json in = mc::test::load_city(input);
   EXPECT_EQ(out["CityObjects"][victim]["geometry"], in["CityObjects"][victim]["geometry"]);
   EXPECT_EQ(parts_of(out, victim), 0u);

@@ -39,7 +39,7 @@ Outputs run_on(const std::string& input, const mc::test::TempDir& dir, const std
 // morphcut attributes; every added object is a closed BuildingPart of a Building.
 void check_output(const std::string& input, const std::string& output, const std::string& known_defect = "") {
   const json in = mc::test::load_city(input);
-  const json out = mc::test::load_city(output);
+  const json out = mc::test::load_outputs(output);
   EXPECT_EQ(out["version"], in["version"]);
   EXPECT_EQ(out["transform"], in["transform"]);
   EXPECT_EQ(out["metadata"], in["metadata"]);
@@ -163,6 +163,11 @@ TEST(Run, ThreadCountDoesNotChangeAByteOfTheOutputs) {
   const std::string a = mc::test::slurp(dir / "t1.city.jsonl"), b = mc::test::slurp(dir / "t2.city.jsonl");
   ASSERT_FALSE(a.empty());
   EXPECT_TRUE(a == b) << "CityJSONSeq outputs differ between --threads 1 and 2";
+  const auto l1 = mc::test::level_files(dir / "t1.city.jsonl"), l2 = mc::test::level_files(dir / "t2.city.jsonl");
+  ASSERT_EQ(l1.size(), 4u);
+  ASSERT_EQ(l2.size(), l1.size());
+  for (size_t i = 0; i < l1.size(); ++i)
+    EXPECT_TRUE(mc::test::slurp(l1[i]) == mc::test::slurp(l2[i])) << l1[i] << " differs between --threads 1 and 2";
   EXPECT_TRUE(mc::test::slurp(dir / "t1.csv") == mc::test::slurp(dir / "t2.csv")) << "summary CSVs differ";
 }
 
@@ -176,6 +181,10 @@ TEST(Run, RepeatedRunsInOneProcessAreIdentical) {
   const Outputs one = run_on(input, dir, "r1", 1);
   const Outputs two = run_on(input, dir, "r2", 1);
   EXPECT_TRUE(mc::test::slurp(one.output) == mc::test::slurp(two.output));
+  const auto l1 = mc::test::level_files(one.output), l2 = mc::test::level_files(two.output);
+  ASSERT_FALSE(l1.empty());
+  ASSERT_EQ(l1.size(), l2.size());
+  for (size_t i = 0; i < l1.size(); ++i) EXPECT_TRUE(mc::test::slurp(l1[i]) == mc::test::slurp(l2[i])) << l1[i];
   mc::test::expect_valid_output(one.output);
 }
 
@@ -193,7 +202,7 @@ TEST(Run, AFailingBuildingIsWrittenThroughAndTheOthersProcessed) {
   EXPECT_EQ(o.result.counts.at("failed"), 1u);
   EXPECT_EQ(o.result.counts.at("ok"), 1u);
   EXPECT_EQ(o.result.exit_code(), 1);
-  const json out = mc::test::load_city(o.output);
+  const json out = mc::test::load_outputs(o.output);
   const json& b = out["CityObjects"][broken];
   EXPECT_EQ(b["attributes"]["morphcut_status"], "failed");
   EXPECT_FALSE(b["attributes"]["morphcut_reason"].get<std::string>().empty());
@@ -219,7 +228,7 @@ TEST(Run, OutputLevelsAndLodSelectWhatIsWritten) {
   const LoadedConfig cfg = load_config_string("decompose:\n  levels: [0.1, 0.01]\noutput_levels: [0.01]\nlod: \"2.2\"\n");
   const Outputs o = run_on(input, dir, "l", 2, cfg.params, cfg.run);
   EXPECT_EQ(o.result.counts.at("ok"), 2u);
-  const json out = mc::test::load_city(o.output);
+  const json out = mc::test::load_outputs(o.output);
   size_t level1 = 0;
   for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it) {
     EXPECT_EQ(it.key().find("-mc0-"), std::string::npos) << "level 0 not requested";

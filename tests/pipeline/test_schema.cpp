@@ -21,22 +21,31 @@ TEST(Schema, OutputValidatesAgainstCityJson20) {
   const ProcessResult run = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
                                         " --config quick.yaml -q -o out.city.json --no-report --no-summary");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  // The output has to be a real decomposition for the check to mean anything.
-  const json out = json::parse(slurp(dir / "out.city.json"));
+  // Every file the run wrote: the annotated input and one city per level (docs/output-format.md).
+  const std::vector<std::string> files = {"out.city.json", "out.level-0.1.city.json", "out.level-0.001.city.json"};
+  // The level files have to be real decompositions for the check to mean anything.
   size_t parts = 0;
-  for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it) parts += it.key().find("-mc") != std::string::npos;
+  for (size_t k = 1; k < files.size(); ++k) {
+    const json level = json::parse(slurp(dir / files[k]));
+    size_t here = 0;
+    for (auto it = level["CityObjects"].begin(); it != level["CityObjects"].end(); ++it) here += it.key().find("-mc") != std::string::npos;
+    EXPECT_GT(here, 0u) << files[k];
+    parts += here;
+    expect_valid_output(dir / files[k], here);
+  }
   ASSERT_GT(parts, 2u);
-  expect_valid_output(dir / "out.city.json", parts);
-  // A deliberately broken copy must be rejected, or a pass proves nothing. One ajv call for both
+  // A deliberately broken copy must be rejected, or a pass proves nothing. One ajv call for all
   // files: compiling the 300 kB schema is most of ajv's time.
-  json broken = out;
+  json broken = json::parse(slurp(dir / files[2]));
   for (auto it = broken["CityObjects"].begin(); it != broken["CityObjects"].end(); ++it)
     if (it.key().find("-mc") != std::string::npos) it.value()["type"] = "NotACityObjectType";
   std::ofstream(dir / "broken.city.json") << broken.dump();
-  const std::string cmd = ajv + " validate --strict=false --all-errors=false -c ajv-formats -s " + schema_dir() +
-                          "/cityjson.min.schema.json -d " + (dir / "out.city.json") + " -d " + (dir / "broken.city.json");
+  std::string cmd = ajv + " validate --strict=false --all-errors=false -c ajv-formats -s " + schema_dir() +
+                    "/cityjson.min.schema.json";
+  for (const auto& f : files) cmd += " -d " + (dir / f);
+  cmd += " -d " + (dir / "broken.city.json");
   const ProcessResult v = run_command(cmd);
-  EXPECT_NE(v.output.find("out.city.json valid"), std::string::npos) << cmd << "\n" << v.output.substr(0, 4000);
+  for (const auto& f : files) EXPECT_NE(v.output.find(f + " valid"), std::string::npos) << cmd << "\n" << v.output.substr(0, 4000);
   EXPECT_NE(v.output.find("broken.city.json invalid"), std::string::npos) << v.output.substr(0, 2000);
 }
 

@@ -6,7 +6,8 @@
 #                   [--retries N] [--backoff S] [--force]
 #
 # Outputs, named after the input's stem (as morphcut-city names them), so a re-run overwrites:
-#   OUTDIR/<stem>.morphcut.city.json (.city.jsonl for CityJSONSeq input)
+#   OUTDIR/<stem>.morphcut.city.json (.city.jsonl for CityJSONSeq input): the annotated input
+#   OUTDIR/<stem>.morphcut.level-<t>.city.json[l]: one city per level (docs/output-format.md)
 #   OUTDIR/<stem>.morphcut.report.json, OUTDIR/<stem>.morphcut.csv
 # The tile is skipped when all three exist and are newer than the input, the config file and the
 # morphcut-city binary (--force redoes it). morphcut-city writes atomically, so a tile killed
@@ -54,7 +55,12 @@ mkdir -p "$outdir"
 
 up_to_date() {
   local f dep
-  for f in "$out" "$report" "$csv"; do
+  # The level files (docs/output-format.md), as the report lists them; the report is written last.
+  local levels=()
+  [ -f "$report" ] && mapfile -t levels < <(python3 -c '
+import json, sys
+for l in json.load(open(sys.argv[1]))["outputs"].get("levels", []): print(l["cityjson"])' "$report" 2>/dev/null)
+  for f in "$out" "$report" "$csv" "${levels[@]}"; do
     [ -f "$f" ] || return 1
     for dep in "$tile" ${config:+"$config"} "$bin"; do
       [ "$f" -nt "$dep" ] || return 1

@@ -1,0 +1,244 @@
+// The output contract (docs/output-format.md): the annotated input and one coherent city per
+// level, and every written part valid by val3dity's rules after quantisation, repaired when needed.
+#include <set>
+
+#include "core/solid_validation.hpp"
+#include "io/cityjson.hpp"
+#include "io/cityjson_building.hpp"
+#include "pipeline/job.hpp"
+#include "pipeline/level_views.hpp"
+#include "pipeline/part_objects.hpp"
+#include "pipeline/part_repair.hpp"
+#include "pipeline/run.hpp"
+#include "pipeline/validate.hpp"
+#include "pipeline_fixtures.hpp"
+
+namespace mc::pipeline {
+namespace {
+
+using mc::test::json;
+
+std::vector<mc::io::Feature> read_some(const std::string& path, mc::io::Header& h, const std::set<std::string>& ids = {}) {
+  mc::io::CityJsonReader r(path);
+  h = r.header();
+  std::vector<mc::io::Feature> out;
+  mc::io::Feature f;
+  while (r.next(f))
+    if (ids.empty() || ids.count(f.id)) out.push_back(std::move(f));
+  return out;
+}
+
+// Every Solid/CompositeSolid of the Building and its BuildingParts, as (object, lod).
+std::vector<std::pair<std::string, std::string>> solids_of(const mc::io::Feature& f) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (auto it = f.objects.begin(); it != f.objects.end(); ++it)
+    for (const auto& g : it->value("geometry", json::array()))
+      if (g.value("type", "") == "Solid" || g.value("type", "") == "CompositeSolid")
+        out.emplace_back(it.key(), mc::io::lod_string(g["lod"]));
+  return out;
+}
+
+void expect_references_in_range(mc::io::Feature f) {
+  mc::io::for_each_vertex_ref(f.objects, [&](json& leaf, const std::string& id, const std::string&) {
+    ASSERT_TRUE(leaf.is_number_integer()) << id;
+    EXPECT_LT(leaf.get<size_t>(), f.vertices.size()) << id;
+  });
+}
+
+TEST(LevelViews, OutputPathsNameTheLevel) {
+  EXPECT_EQ(level_output_path("out/x.morphcut.city.json", 0.01), "out/x.morphcut.level-0.01.city.json");
+  EXPECT_EQ(level_output_path("x.morphcut.city.jsonl", 0.0001), "x.morphcut.level-0.0001.city.jsonl");
+  EXPECT_EQ(level_output_path("x.json", 0.1), "x.level-0.1.json");
+  EXPECT_EQ(level_output_path("x", 0.5), "x.level-0.5.city.json");
+}
+
+// A real 3D BAG building (Building with LoD 0, BuildingPart "-0" with LoD 2.2): the annotated
+// view is the input plus attributes; each level view has exactly one Solid set at LoD 2.2 (that
+// level's parts), the input part keeps its object and attributes.
+TEST(LevelViews, EachLevelIsOneCoherentBuilding) {
+  MC_REQUIRE_DATA(path, "cjseq/3dbag_b2.city.json");
+  mc::io::Header h;
+  auto features = read_some(path, h);
+  ASSERT_FALSE(features.empty());
+  const mc::io::Feature input = features[0];
+  const Params p = mc::test::default_config().params;
+  const BuildingOutcome b = run_building(input, h, p, RunConfig{});
+  ASSERT_EQ(b.status, "ok") << b.reason;
+  ASSERT_EQ(b.lod, "2.2");
+
+  const mc::io::Feature annotated = annotated_view(b.feature);
+  EXPECT_EQ(annotated.objects.size(), input.objects.size());
+  for (auto it = input.objects.begin(); it != input.objects.end(); ++it) {
+    ASSERT_TRUE(annotated.objects.contains(it.key()));
+    if (it.key() != input.id) EXPECT_EQ(annotated.objects[it.key()], it.value());
+  }
+  EXPECT_EQ(annotated.vertices, input.vertices);  // no part vertex left behind
+  EXPECT_EQ(annotated.objects[input.id]["attributes"]["morphcut_status"], "ok");
+  EXPECT_EQ(solids_of(annotated), solids_of(input));
+
+  for (const LevelOutcome& l : b.levels) {
+    const mc::io::Feature v = level_view(b.feature, h, l.threshold, b.lod);
+    expect_references_in_range(v);
+    const json& building = v.objects[v.id];
+    EXPECT_EQ(building["attributes"]["morphcut_level"], l.threshold);
+    size_t parts = 0;
+    for (auto it = v.objects.begin(); it != v.objects.end(); ++it) {
+      if (!is_morphcut_part(*it)) continue;
+      ++parts;
+      EXPECT_EQ((*it)["attributes"]["morphcut_level"], l.threshold);
+      EXPECT_EQ((*it)["parents"], json::array({v.id}));
+    }
+    EXPECT_EQ(parts, l.parts);
+    // Children: the input part and this level's parts, all present.
+    for (const auto& c : building["children"]) EXPECT_TRUE(v.objects.contains(c.get<std::string>())) << c;
+    EXPECT_EQ(building["children"].size(), parts + 1);
+    // Only the parts are Solids at 2.2; the input part is still there with its attributes.
+    for (const auto& [id, lod] : solids_of(v))
+      if (lod == "2.2") EXPECT_TRUE(is_morphcut_part(v.objects[id])) << id;
+    for (auto it = input.objects.begin(); it != input.objects.end(); ++it) {
+      ASSERT_TRUE(v.objects.contains(it.key()));
+      if (it->contains("attributes") && it.key() != input.id) EXPECT_EQ(v.objects[it.key()]["attributes"], (*it)["attributes"]);
+    }
+  }
+}
+
+// A failed building is the input in every view (nothing to take out of the way).
+TEST(LevelViews, FailedBuildingIsTheInputEverywhere) {
+  MC_REQUIRE_DATA(path, "cjseq/3dbag_b2.city.json");
+  mc::io::Header h;
+  auto features = read_some(path, h);
+  ASSERT_FALSE(features.empty());
+  mc::io::Feature input = features[0];
+  const BuildingOutcome b = failed_building(mc::io::Feature(input), "test");
+  const mc::io::Feature v = level_view(b.feature, h, 0.01, "2.2");
+  EXPECT_EQ(solids_of(v), solids_of(input));
+  EXPECT_FALSE(v.objects[v.id]["attributes"].contains("morphcut_level"));
+}
+
+// The convention val3dity's 601 (BUILDINGPARTS_OVERLAP) enforces: every level file of a real run
+// passes; the same parts all hung under their Buildings in one file (the layout of version 0.1),
+// with the input's own Solid at the same LoD, are flagged on every Building.
+TEST(LevelViews, ValidateFlagsLevelsStackedUnderOneBuilding) {
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
+  mc::test::TempDir dir("contract_601");
+  LoadedConfig cfg = load_config_string("decompose:\n  levels: [0.1, 0.01]\n");
+  RunOptions opt;
+  opt.input = input;
+  opt.output = dir / "b2.city.json";
+  run_city(opt, cfg.params, cfg.run);
+  const auto levels = mc::test::level_files(opt.output);
+  ASSERT_EQ(levels.size(), 2u);
+  for (const auto& l : levels) {
+    const ValidationSummary s = validate_city(l, {}, nullptr);
+    EXPECT_TRUE(s.valid()) << l;
+    EXPECT_GT(s.counts.parts, 0u) << l;
+  }
+  std::ofstream(dir / "stacked.city.json") << mc::test::load_outputs(opt.output).dump();
+  std::map<std::string, std::vector<std::string>> errors;
+  validate_city(dir / "stacked.city.json", {}, [&](const ObjectReport& r) {
+    for (const auto& e : r.errors)
+      if (e.code == validate_code::kPartsOverlap) errors[r.id].push_back(e.message);
+  });
+  ASSERT_EQ(errors.size(), 2u);  // both Buildings
+  for (const auto& [id, messages] : errors) {
+    bool levels_msg = false, input_msg = false;
+    for (const auto& m : messages) {
+      levels_msg = levels_msg || m.find("levels hang under one Building") != std::string::npos;
+      input_msg = input_msg || m.find("the input Solid of " + id + "-0 at LoD 2.2") != std::string::npos;
+    }
+    EXPECT_TRUE(levels_msg) << id;
+    EXPECT_TRUE(input_msg) << id;
+  }
+}
+
+// A cube whose top corner is lifted 10 cm (rounding does this on a smaller scale to a thin part's
+// vertex): the top is no longer planar within val3dity's 1 cm (203). The repair writes it as
+// triangles; the part then passes.
+TEST(PartRepair, BentFacesAreWrittenAsTriangles) {
+  std::vector<Vec3> pool = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1.1}, {0, 1, 1}};
+  std::vector<GridFace> cube = {{{{0, 3, 2, 1}}}, {{{4, 5, 6, 7}}}, {{{0, 1, 5, 4}}},
+                                {{{1, 2, 6, 5}}}, {{{2, 3, 7, 6}}}, {{{3, 0, 4, 7}}}};
+  SolidCheck before;
+  const std::string defect = grid_solid_defect(cube, pool, &before);
+  EXPECT_FALSE(defect.empty());
+  EXPECT_FALSE(before.bad_faces.empty());
+  const PartRepair r = check_and_repair(cube, pool);
+  EXPECT_EQ(r.defect, "");
+  EXPECT_TRUE(r.repaired);
+  EXPECT_EQ(r.split_faces, 1u);  // the top (the walls stay planar: the corner moves along them)
+  EXPECT_EQ(r.faces.size(), 5u + 2);
+}
+
+// A roof around a chimney whose triangular footprint touches the roof's edge at one vertex v:
+// traced as one ring it visits v twice, which val3dity calls not simple (104). The repair cuts
+// it at v into the outer ring and the chimney's hole (touching at one point: valid).
+TEST(PartRepair, SelfTouchingRingIsSplitIntoSimpleRings) {
+  std::vector<Vec3> pool = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0},            // 0-3 bottom
+                            {0, 0, 1}, {4, 0, 1}, {4, 4, 1}, {0, 4, 1}, {0, 2, 1},  // 4-7 top, 8 = v
+                            {1, 1.5, 1}, {1, 2.5, 1},                               // 9, 10 chimney base
+                            {0, 2, 2}, {1, 1.5, 2}, {1, 2.5, 2}};                   // 11-13 chimney top
+  std::vector<GridFace> solid = {
+      {{{0, 3, 2, 1}}},                  // ground
+      {{{0, 1, 5, 4}}},                  // front wall
+      {{{1, 2, 6, 5}}},                  // right wall
+      {{{2, 3, 7, 6}}},                  // back wall
+      {{{3, 0, 4, 8, 7}}},               // left wall, v on its top edge
+      {{{4, 5, 6, 7, 8, 10, 9, 8}}},     // roof: one ring through v twice
+      {{{8, 9, 12, 11}}},                // chimney walls
+      {{{9, 10, 13, 12}}},
+      {{{10, 8, 11, 13}}},
+      {{{11, 12, 13}}}};                 // chimney top
+  SolidCheck c;
+  const std::string defect = grid_solid_defect(solid, pool, &c);
+  ASSERT_FALSE(defect.empty());
+  EXPECT_NE(defect.find("104"), std::string::npos) << defect;
+  const PartRepair r = check_and_repair(solid, pool);
+  EXPECT_EQ(r.defect, "") << r.defect;
+  EXPECT_TRUE(r.repaired);
+  EXPECT_EQ(r.split_faces, 1u);
+  ASSERT_EQ(r.faces.size(), solid.size());
+  bool roof_with_hole = false;
+  for (const auto& f : r.faces) roof_with_hole = roof_with_hole || (f.rings.size() == 2 && f.rings[1].size() == 3);
+  EXPECT_TRUE(roof_with_hole);
+}
+
+// The buildings of the 3D BAG tile whose parts val3dity rejected before parts were checked on
+// the output grid (104 on 19275, 25100, 25101; 204 on 27992 and 19275): every part they get now
+// passes val3dity's rules, and the repairs are counted.
+TEST(PartRepair, RealBuildingsThatFailedVal3dityAreWrittenValid) {
+  MC_REQUIRE_DATA(path, "3dbag/3dbag_5910.city.json");
+  mc::io::Header h;
+  const std::set<std::string> ids = {"NL.IMBAG.Pand.0503100000019275", "NL.IMBAG.Pand.0503100000025100",
+                                     "NL.IMBAG.Pand.0503100000025101", "NL.IMBAG.Pand.0503100000027992"};
+  auto features = read_some(path, h, ids);
+  ASSERT_EQ(features.size(), ids.size());
+  const Params p = mc::test::default_config().params;
+  size_t repaired = 0, split = 0;
+  for (auto& f : features) {
+    const BuildingOutcome b = run_building(f, h, p, RunConfig{});
+    EXPECT_TRUE(b.status == "ok" || b.status == "partial") << b.id << ": " << b.reason;
+    repaired += b.size.parts_repaired;
+    split += b.size.split_faces;
+    EXPECT_GT(b.size.parts_written, 0u);
+    // Every written Solid passes val3dity's rules as written (on the grid).
+    mc::io::Feature written = b.feature;
+    for (auto it = written.objects.begin(); it != written.objects.end(); ++it) {
+      if (!is_morphcut_part(*it)) continue;
+      PolygonMesh m;
+      m.vertices = written.vertices;
+      for (const auto& surface : (*it)["geometry"][0]["boundaries"][0]) {
+        Polygon poly;
+        for (const auto& ring : surface) poly.rings.push_back(ring.get<std::vector<uint32_t>>());
+        m.faces.push_back(std::move(poly));
+      }
+      // Vertices on the writer's grid: the pool already snapped them.
+      const SolidCheck c = check_solid(m, val3dity_tolerances(), false);
+      EXPECT_TRUE(c.valid()) << it.key() << ": " << (c.errors.empty() ? "" : c.errors[0].message);
+    }
+  }
+  EXPECT_GT(repaired, 0u);
+  EXPECT_GT(split, 0u);
+}
+
+}  // namespace
+}  // namespace mc::pipeline
