@@ -15,6 +15,7 @@ PKGS=(
   clang libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and clang's sanitizers
   libgeos-dev libboost-filesystem-dev  # tools/val3dity/build.sh: val3dity, the reference validator the tests run (with cmake, g++, CGAL, Eigen above)
   chromium  # tests/tools/html_browser_test.mjs: the HTML report in a real (headless) browser
+  libgdal-dev gdal-bin python3-networkx  # massing analytics: GeoPackage output (GDAL/OGR, GEOS unions), ogrinfo and networkx in the tests
 )
 
 missing=()
