@@ -435,6 +435,47 @@ bool triangulate_polygon(const std::vector<std::vector<uint32_t>>& rings, const 
   return out.size() > before;
 }
 
+namespace {
+
+// An ear of the polygon (two ring edges and a chord) whose middle vertex lies within 1/100 of the
+// chord's length from it is a sliver whose normal is rounding noise: a corner kept for a
+// neighbouring part and rounded off its straight edge makes one, and a tall wall keeps it
+// Delaunay. Its chord is flipped to the triangle behind it (in canonical order, so that a face
+// two parts share gets the same flips), which ties the vertex to the far side of the face.
+void flip_sliver_ears(CDT& cdt, const std::vector<Vec3>& pts) {
+  for (int guard = 0; guard < 64; ++guard) {
+    std::optional<std::pair<std::array<uint32_t, 3>, std::pair<CDT::Face_handle, int>>> best;
+    for (auto fh : cdt.finite_face_handles()) {
+      if (fh->info().nesting % 2 != 1) continue;
+      for (int i = 0; i < 3; ++i) {
+        if (cdt.is_constrained({fh, i}) || !cdt.is_constrained({fh, CDT::ccw(i)}) || !cdt.is_constrained({fh, CDT::cw(i)}))
+          continue;
+        const CDT::Face_handle n = fh->neighbor(i);
+        if (cdt.is_infinite(n) || n->info().nesting % 2 != 1) continue;
+        const uint32_t a = fh->vertex(i)->info(), b = fh->vertex(CDT::ccw(i))->info(), d = fh->vertex(CDT::cw(i))->info();
+        const Vec3 chord = pts[d] - pts[b];
+        const double len = norm(chord);
+        if (!(len > 0) || norm(cross(pts[a] - pts[b], chord)) / len > 1e-2 * len) continue;
+        // The flip must keep both new triangles (a, b, w) and (a, w, d) turning like the face.
+        const CDT::Vertex_handle w = n->vertex(n->index(fh));
+        const auto& pa = fh->vertex(i)->point();
+        if (CGAL::orientation(pa, fh->vertex(CDT::ccw(i))->point(), w->point()) != CGAL::LEFT_TURN ||
+            CGAL::orientation(pa, w->point(), fh->vertex(CDT::cw(i))->point()) != CGAL::LEFT_TURN)
+          continue;
+        std::array<uint32_t, 3> key{a, std::min(b, d), std::max(b, d)};
+        if (!best || key < best->first) best = {{key, {fh, i}}};
+      }
+    }
+    if (!best) return;
+    CDT::Face_handle f = best->second.first;
+    cdt.flip(f, best->second.second);
+    for (auto fh : cdt.all_face_handles()) fh->info().nesting = -1;
+    mark_domains(cdt);
+  }
+}
+
+}  // namespace
+
 bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
                                    std::vector<std::array<uint32_t, 3>>& out) {
   if (rings.empty() || rings[0].size() < 3) return false;
@@ -465,6 +506,7 @@ bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rin
   }
   if (cdt.number_of_vertices() != used.size()) return false;  // two points project onto one
   mark_domains(cdt);
+  flip_sliver_ears(cdt, pts);
   // CCW in (u, v) is CCW about +axis; the ring turns about n, whose component on the axis has
   // the sign of n[drop].
   const bool flip = n[drop] < 0;
