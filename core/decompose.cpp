@@ -751,10 +751,8 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
 }
 
 namespace {
-PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid,
-                         const LevelSurfaceContext& level = {}) {
+PolygonMesh surface_to_mesh(const Preprocessed& pre, const Surface& s) {
   const CellComplex& cx = *pre.complex;
-  const Surface s = extract_surface(cx, cells, solid, level);
   PolygonMesh labels;  // the input's labels plus ClosureSurface for cut faces
   labels.semantic_labels = pre.labels;
   const int32_t closure = labels.label_index("ClosureSurface");
@@ -767,6 +765,10 @@ PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& c
   for (size_t i = 0; i < s.faces.size(); ++i)
     if (s.faces[i].neighbour != CellComplex::kNone) m.faces[i].neighbour = static_cast<int32_t>(s.faces[i].neighbour);
   return m;
+}
+
+PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
+  return surface_to_mesh(pre, extract_surface(*pre.complex, cells, solid));
 }
 
 std::vector<uint32_t> all_singleton_cells(const Preprocessed& pre) {
@@ -792,13 +794,22 @@ std::vector<PolygonMesh> level_part_meshes(const Preprocessed& pre, const std::v
     leaves.push_back(current_leaves(cx, parts[p].cells));
     for (uint32_t c : leaves.back()) part_of[c] = static_cast<uint32_t>(p);
   }
-  // The corners of every part's faces, then every part again keeping them.
+  // The corners of every part's faces; a part that dropped one of them is extracted again keeping
+  // them (the drop rule depends on the part alone, so the others are already right).
+  std::vector<Surface> surfaces;
   std::unordered_set<uint32_t> corners;
-  for (const auto& l : leaves)
-    for (const auto& f : extract_surface(cx, l, &solid, {&part_of, nullptr}).faces)
+  for (const auto& l : leaves) {
+    surfaces.push_back(extract_surface(cx, l, &solid, {&part_of, nullptr}));
+    for (const auto& f : surfaces.back().faces)
       for (const auto& r : f.rings) corners.insert(r.begin(), r.end());
+  }
   std::vector<PolygonMesh> out;
-  for (const auto& l : leaves) out.push_back(surface_mesh(pre, l, &solid, {&part_of, &corners}));
+  for (size_t p = 0; p < leaves.size(); ++p) {
+    const auto& dropped = surfaces[p].dropped;
+    if (std::any_of(dropped.begin(), dropped.end(), [&](uint32_t v) { return corners.count(v) > 0; }))
+      surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, &corners});
+    out.push_back(surface_to_mesh(pre, surfaces[p]));
+  }
   return out;
 }
 

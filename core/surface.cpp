@@ -169,6 +169,8 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
     ns.erase(std::unique(ns.begin(), ns.end()), ns.end());
     if (ns.size() == 2 && cx.collinear(ns[0], v, ns[1]) && !(level.keep && level.keep->count(v))) drop.insert(v);
   }
+  s.dropped.assign(drop.begin(), drop.end());
+  std::sort(s.dropped.begin(), s.dropped.end());
   // 4. Outer rings vs holes by orientation about the outward normal; holes go to their outer ring.
   for (auto& rf : raw) {
     Vec3 n = cx.planes()[rf.plane].n;

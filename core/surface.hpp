@@ -25,6 +25,7 @@ struct Surface {
   std::vector<SurfaceFace> faces;
   size_t boundary_edges = 0;     // edges used once (0 for a closed surface)
   size_t nonmanifold_edges = 0;  // edges used more than twice
+  std::vector<uint32_t> dropped;  // vertices left out of the rings as collinear (sorted)
   bool closed() const { return boundary_edges == 0; }
 };
 

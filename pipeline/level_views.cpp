@@ -19,25 +19,33 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 double part_level(const json& object) { return object["attributes"]["morphcut_level"].get<double>(); }
 
-// Keeps the parts `keep` accepts, removes the others and their ids from every "children" list.
+// The feature with only the parts `keep` accepts (the others and their ids in "children" left
+// out), copying each kept object once; vertices are the feature's until compacted.
 template <class Keep>
-void filter_parts(mc::io::Feature& f, Keep keep) {
+mc::io::Feature with_parts(const mc::io::Feature& f, Keep keep) {
+  mc::io::Feature v;
+  v.id = f.id;
+  v.problems = f.problems;
+  v.extra = f.extra;
+  v.vertices = f.vertices;
+  v.objects = json::object();
   std::vector<std::string> gone;
-  for (auto it = f.objects.begin(); it != f.objects.end(); ++it)
+  for (auto it = f.objects.begin(); it != f.objects.end(); ++it) {
     if (is_morphcut_part(*it) && !keep(*it)) gone.push_back(it.key());
-  if (gone.empty()) return;
+    else v.objects[it.key()] = *it;
+  }
+  if (gone.empty()) return v;
   std::sort(gone.begin(), gone.end());
-  for (const auto& id : gone) f.objects.erase(id);
-  for (auto& obj : f.objects) {
+  for (auto& obj : v.objects) {
     if (!obj.is_object()) continue;
     auto ch = obj.find("children");
     if (ch == obj.end() || !ch->is_array()) continue;
     json kept = json::array();
     for (auto& c : *ch)
-      if (!c.is_string() || !std::binary_search(gone.begin(), gone.end(), c.get<std::string>()))
-        kept.push_back(std::move(c));
+      if (!c.is_string() || !std::binary_search(gone.begin(), gone.end(), c.get<std::string>())) kept.push_back(std::move(c));
     *ch = std::move(kept);
   }
+  return v;
 }
 
 }  // namespace
@@ -83,16 +91,14 @@ void compact_vertices(mc::io::Feature& f) {
 }
 
 mc::io::Feature annotated_view(const mc::io::Feature& f) {
-  mc::io::Feature v = f;
-  filter_parts(v, [](const json&) { return false; });
+  mc::io::Feature v = with_parts(f, [](const json&) { return false; });
   compact_vertices(v);
   return v;
 }
 
 mc::io::Feature level_view(const mc::io::Feature& f, const mc::io::Header& h, double threshold, const std::string& lod) {
-  mc::io::Feature v = f;
   bool has_parts = false;
-  filter_parts(v, [&](const json& part) {
+  mc::io::Feature v = with_parts(f, [&](const json& part) {
     const bool here = part_level(part) == threshold;
     has_parts = has_parts || here;
     return here;
