@@ -151,6 +151,35 @@ TEST(LevelViews, ValidateFlagsLevelsStackedUnderOneBuilding) {
   }
 }
 
+// The eight parts val3dity 2.6.0 rejected in the demo output of version 0.1 (3D BAG tile 5910:
+// four 104 RING_SELF_INTERSECTION, four 204 NON_PLANAR_POLYGON_NORMALS_DEVIATION), cut out of
+// that output with their coordinates as written: `validate` flags each with val3dity's code, on
+// the face val3dity names, and nothing else as invalid.
+TEST(PartRepair, ValidateFlagsWhatVal3dityRejected) {
+  const std::string path = std::string(MC_SOURCE_DIR) + "/tests/pipeline/data/val3dity_rejected_parts_3dbag.city.json";
+  const std::map<std::string, std::pair<int, std::string>> rejected = {
+      {"NL.IMBAG.Pand.0503100000019275-mc0-0", {104, "face 108:"}},
+      {"NL.IMBAG.Pand.0503100000019275-mc1-6", {104, "face 67:"}},
+      {"NL.IMBAG.Pand.0503100000025100-mc0-0", {104, "face 12:"}},
+      {"NL.IMBAG.Pand.0503100000025101-mc1-17", {104, "face 0:"}},
+      {"NL.IMBAG.Pand.0503100000019275-mc2-68", {204, "face 22: its triangles' normals differ by 24.39 degrees"}},
+      {"NL.IMBAG.Pand.0503100000027992-mc1-3", {204, "differ by 29.06 degrees"}},
+      {"NL.IMBAG.Pand.0503100000027992-mc2-5", {204, "differ by 29.06 degrees"}},
+      {"NL.IMBAG.Pand.0503100000027992-mc3-5", {204, "differ by 29.06 degrees"}}};
+  std::map<std::string, std::vector<ValidationError>> found;
+  const ValidationSummary s = validate_city(path, {}, [&](const ObjectReport& r) {
+    if (r.type == "BuildingPart") found[r.id] = r.errors;
+  });
+  EXPECT_EQ(s.counts.parts, rejected.size());
+  EXPECT_EQ(s.counts.invalid_parts, rejected.size());
+  for (const auto& [id, want] : rejected) {
+    ASSERT_TRUE(found.count(id)) << id;
+    ASSERT_FALSE(found[id].empty()) << id;
+    EXPECT_EQ(found[id][0].code, want.first) << id;
+    EXPECT_NE(found[id][0].message.find(want.second), std::string::npos) << id << ": " << found[id][0].message;
+  }
+}
+
 // A cube whose top corner is lifted 10 cm (rounding does this on a smaller scale to a thin part's
 // vertex): the top is no longer planar within val3dity's 1 cm (203). The repair writes it as
 // triangles; the part then passes.
