@@ -217,6 +217,7 @@ MergeResult merge_reports(const MergeOptions& opt) {
                {"report_sha256", sha256_hex(text)},
                {"input", member(input, "path")},
                {"input_sha256", member(input, "sha256")},
+               {"outputs", member(doc, "outputs")},  // the tile's city, one city per level, CSV
                {"version", version},
                {"config_sha256", sha256_hex(config.dump())},
                {"building_count", member(doc, "building_count")},

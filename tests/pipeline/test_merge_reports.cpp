@@ -75,6 +75,9 @@ TEST_F(MergeReports, TwoRealTilesMergeIntoOneReportAndCsv) {
   EXPECT_EQ(m["tiles"][1]["tile"], "delft_subset");
   EXPECT_EQ(m["tiles"][0]["report_sha256"], sha256_file(report("3dbag_b2")));
   EXPECT_EQ(m["tiles"][1]["input_sha256"], rb["input"]["sha256"]);
+  // Each tile's outputs, its level files among them (docs/output-format.md).
+  EXPECT_EQ(m["tiles"][0]["outputs"], ra["outputs"]);
+  EXPECT_FALSE(m["tiles"][1]["outputs"]["levels"].empty());
   EXPECT_EQ(m["tiles"][1]["counts"], rb["counts"]);
   EXPECT_EQ(m["totals"]["building_count"], n);
   for (const char* s : {"ok", "partial", "failed", "skipped"})

@@ -2,7 +2,7 @@
 # val3dity (the field's reference validator, built outside the source tree by
 # tools/val3dity/build.sh) as an independent check of morphcut-city's output geometry.
 #
-# usage: tests/tools/run_val3dity_test.sh BUILD_DIR selftest|demo
+# usage: tests/tools/run_val3dity_test.sh BUILD_DIR selftest|demo|tiles
 #   selftest  tools/val3dity/check.py on hand-made CityJSON and CityJSONSeq files: an error on
 #             a morphcut part (and an overlap of two morphcut parts) is ours and fails (exit 1);
 #             errors on the input's own BuildingParts, also one with a morphcut-like id but no
@@ -10,6 +10,8 @@
 #   demo      morphcut-city on the bundled 3D BAG tile, then check.py on every CityJSON file the
 #             run wrote (the main output and one file per level): fails on any error on our
 #             parts, whatever the input's own geometry has.
+#   tiles     tools/validate_tiles.sh --val3dity on every public real file with buildings: every
+#             part valid for `morphcut-city validate` and no val3dity error on any of our parts.
 # Exit 0 pass, 1 fail, 77 skipped (the val3dity source tarball is not available).
 set -euo pipefail
 
@@ -135,6 +137,25 @@ demo)
     *) echo "FAIL: check.py could not run val3dity (exit $rc)"; exit 1 ;;
   esac
   ;;
+tiles)
+  # Every public real CityJSON file with buildings (tools/validate_tiles.sh): every part valid for
+  # morphcut-city validate, and no val3dity error on any part in any file the runs wrote.
+  set +e
+  bash "$root/tools/validate_tiles.sh" --bin "$build/tools/morphcut-city" --work "$tmp" --val3dity | tee "$tmp/tiles.txt"
+  rc=$?
+  set -e
+  [ "$rc" -eq 0 ] || { echo "FAIL: validate_tiles.sh exited $rc"; exit 1; }
+  total="$(grep '^total: ' "$tmp/tiles.txt" || true)"
+  v3="$(grep '^val3dity: ' "$tmp/tiles.txt" || true)"
+  read -r valid parts < <(echo "$total" | sed -E 's/^total: ([0-9]+) of ([0-9]+) .*/\1 \2/')
+  fail=0
+  [ -n "$total" ] && [ "$parts" -gt 0 ] && [ "$valid" = "$parts" ] || { echo "FAIL: not every part valid: $total"; fail=1; }
+  echo "$total" | grep -q ' 0 buildings with tiling errors; 0 files not processed' || { echo "FAIL: $total"; fail=1; }
+  echo "$v3" | grep -q '^val3dity: 0 errors on our parts' || { echo "FAIL: $v3 (listed in $tmp/failures.txt)"; fail=1; }
+  echo "$v3" | grep -q ' 0 files val3dity could not check' || { echo "FAIL: $v3"; fail=1; }
+  [ "$fail" = 0 ] || exit 1
+  echo "PASS: $total; $v3"
+  ;;
 *)
-  echo "usage: $0 BUILD_DIR selftest|demo" >&2; exit 2 ;;
+  echo "usage: $0 BUILD_DIR selftest|demo|tiles" >&2; exit 2 ;;
 esac
