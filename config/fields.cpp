@@ -22,6 +22,8 @@ std::vector<Field> fields_of(Params& p) {
       {"preprocess", "snap_corners", &a.snap_corners},
       {"preprocess", "oracle_rays", &a.oracle_rays},
       {"preprocess", "fill_enclosed", &a.fill_enclosed},
+      {"preprocess", "oracle", &a.oracle},
+      {"preprocess", "volume_check", &a.volume_check},
       {"preprocess", "seed", &a.seed},
       {"preprocess", "up_axis", &a.up_axis},
       {"preprocess", "min_component_fraction", &a.min_component_fraction},

@@ -60,6 +60,9 @@ void validate_pre(const PreprocessParams& p) {
   finite("preprocess.min_gap", p.min_gap);
   if (!(p.min_gap >= 0)) throw ConfigError("preprocess.min_gap", "must be >= 0");
   one_of("preprocess.up_axis", p.up_axis, {"z", "y", "auto"});
+  one_of("preprocess.oracle", p.oracle, {"auto", "parity", "vertical"});
+  finite("preprocess.volume_check", p.volume_check);
+  if (!(p.volume_check >= 0)) throw ConfigError("preprocess.volume_check", "must be >= 0 (0 = off)");
   finite("preprocess.min_component_fraction", p.min_component_fraction);
   if (!(p.min_component_fraction >= 0 && p.min_component_fraction < 1))
     throw ConfigError("preprocess.min_component_fraction", "must be in [0, 1)");

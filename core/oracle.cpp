@@ -392,3 +392,131 @@ void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id, std
 }
 
 }  // namespace mc
+
+namespace mc {
+
+struct VerticalOracle::Impl {
+  RTCScene scene = nullptr;
+  Vec3 origin;
+  double dedup_t = 0;
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+  }
+};
+
+VerticalOracle::VerticalOracle(const TriangleSoup& soup, const std::vector<uint8_t>& cover, double merge_dist,
+                               double ground_z)
+    : impl_(std::make_unique<Impl>()), ground_z_(ground_z) {
+  std::vector<uint32_t> used;
+  for (uint32_t i = 0; i < soup.triangles.size(); ++i)
+    if (i < cover.size() && cover[i]) {
+      used.push_back(i);
+      for (uint32_t v : soup.triangles[i]) box_.add(soup.vertices.at(v));
+    }
+  if (!box_.valid()) return;
+  box_.lo.z = std::min(box_.lo.z, ground_z);
+  impl_->origin = box_.center();
+  impl_->dedup_t = std::max(merge_dist, 1e-5 * std::max(box_.diagonal(), 1e-9));
+  RTCDevice device = shared_device();
+  impl_->scene = rtcNewScene(device);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         3 * sizeof(float), soup.vertices.size()));
+  for (size_t i = 0; i < soup.vertices.size(); ++i) {
+    const Vec3 p = soup.vertices[i] - impl_->origin;
+    vb[3 * i] = static_cast<float>(p.x);
+    vb[3 * i + 1] = static_cast<float>(p.y);
+    vb[3 * i + 2] = static_cast<float>(p.z);
+  }
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                            3 * sizeof(unsigned), used.size()));
+  for (size_t i = 0; i < used.size(); ++i)
+    for (int k = 0; k < 3; ++k) ib[3 * i + k] = soup.triangles[used[i]][k];
+  rtcSetGeometryIntersectFilterFunction(geom, collect_filter);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(impl_->scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(impl_->scene);
+  if (const RTCError err = rtcGetDeviceError(device); err != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
+}
+
+VerticalOracle::~VerticalOracle() = default;
+
+std::vector<double> VerticalOracle::crossings(double x, double y) const {
+  std::vector<double> out;
+  if (!impl_->scene) return out;
+  thread_local Hits hits;
+  hits.clear();
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.hits = &hits;
+  RTCRayHit rh;
+  const double z0 = box_.lo.z - 1.0;  // from below everything, upwards
+  rh.ray = make_ray(Vec3{x, y, z0} - impl_->origin, {0, 0, 1});
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx.base, &rh);
+  if (hits.empty()) return out;
+  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second < b.second : a.first < b.first;
+  });
+  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
+             hits.end());
+  std::sort(hits.begin(), hits.end());
+  double last = -std::numeric_limits<double>::infinity();
+  for (const auto& h : hits) {
+    const double z = z0 + h.first;
+    if (z - last > impl_->dedup_t) out.push_back(z);
+    last = z;
+  }
+  return out;
+}
+
+bool VerticalOracle::inside(const Vec3& p) const {
+  if (!box_.valid() || p.x < box_.lo.x || p.y < box_.lo.y || p.z < box_.lo.z || p.x > box_.hi.x ||
+      p.y > box_.hi.y || p.z > box_.hi.z)
+    return false;
+  const std::vector<double> zs = crossings(p.x, p.y);
+  size_t above = 0;
+  for (double z : zs) above += z > p.z;
+  return (above & 1) != 0;
+}
+
+void VerticalOracle::classify(const std::vector<Vec3>& pts, std::vector<uint8_t>& out) const {
+  out.assign(pts.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i]) ? 1 : 0;
+  });
+}
+
+double VerticalOracle::volume(int columns) const {
+  if (!box_.valid()) return 0;
+  const double wx = box_.hi.x - box_.lo.x, wy = box_.hi.y - box_.lo.y;
+  if (!(wx > 0 && wy > 0)) return 0;
+  const double step = std::sqrt(wx * wy / std::max(columns, 1));
+  const int nx = std::max(1, static_cast<int>(std::ceil(wx / step)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(wy / step)));
+  const double dx = wx / nx, dy = wy / ny;
+  std::vector<double> col(static_cast<size_t>(nx) * ny, 0.0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, col.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      // Column centres nudged off the grid so that they do not run along axis-aligned edges.
+      const double x = box_.lo.x + (static_cast<double>(i % nx) + 0.5 + 0.0123) * dx;
+      const double y = box_.lo.y + (static_cast<double>(i / nx) + 0.5 - 0.0171) * dy;
+      const std::vector<double> zs = crossings(x, y);
+      double len = 0;
+      size_t k = 0;
+      if (zs.size() % 2) len += std::max(0.0, zs[k++] - ground_z_);  // open bottom: from the ground level
+      for (; k + 1 < zs.size(); k += 2) len += zs[k + 1] - zs[k];
+      col[i] = len;
+    }
+  });
+  double sum = 0;
+  for (double v : col) sum += v;
+  return sum * dx * dy;
+}
+
+}  // namespace mc

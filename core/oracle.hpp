@@ -61,3 +61,40 @@ class InsideOracle {
 };
 
 }  // namespace mc
+
+namespace mc {
+
+// The vertical "roof-over-ground" vote for open inputs (docs/algorithm.md §6.4): parity of the
+// crossings of the vertical ray p + t·e_z (t > 0) with the input's *cover* triangles (roofs,
+// grounds and other non-vertical surfaces; walls and interior surfaces are left out), above the
+// ground level. Walls are parallel to the ray, so missing walls (party walls, gaps, a wall-less
+// model) change nothing; a missing ground is replaced by the ground level (a column with an odd
+// number of crossings starts there). Deterministic (no random directions).
+class VerticalOracle {
+ public:
+  // cover[i] != 0: soup triangle i takes part. ground_z: the ground level (the input's lowest
+  // height); points below it are outside. Hits closer than merge_dist along a ray are one.
+  VerticalOracle(const TriangleSoup& soup, const std::vector<uint8_t>& cover, double merge_dist, double ground_z);
+  ~VerticalOracle();
+  VerticalOracle(const VerticalOracle&) = delete;
+  VerticalOracle& operator=(const VerticalOracle&) = delete;
+
+  bool valid() const { return box_.valid(); }  // some cover triangle
+  // Box of the cover triangles, from the ground level up; everything outside it is outside.
+  const BBox& bbox() const { return box_; }
+  bool inside(const Vec3& p) const;  // thread-safe
+  void classify(const std::vector<Vec3>& pts, std::vector<uint8_t>& out) const;  // parallel (TBB)
+  // The volume the vote labels inside, integrated over a grid of vertical columns of about
+  // `columns` columns over the cover's horizontal box (an estimate independent of the carving).
+  double volume(int columns = 4096) const;
+  // Heights where the vertical line through (x, y) crosses the cover, ascending, merged.
+  std::vector<double> crossings(double x, double y) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  BBox box_;
+  double ground_z_ = 0;
+};
+
+}  // namespace mc

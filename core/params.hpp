@@ -35,6 +35,14 @@ struct PreprocessParams {
   // Points the parity vote calls outside but that no ray (horizon to zenith) escapes from are
   // inside: storeys whose floors are modelled as sheets inside the solid (core/oracle.hpp).
   bool fill_enclosed = true;
+  // Which inside/outside oracle labels the carving (docs/algorithm.md §6.4): "auto" = the parity
+  // vote (§6.1–§6.3) for closed and nearly closed inputs, the vertical roof-over-ground vote for
+  // open ones; "parity" or "vertical" force one.
+  std::string oracle = "auto";
+  // Volume check (§6.5): when the cell's volume and an independent estimate of the volume the
+  // input encloses differ by more than this fraction, the other oracle labels the carving a second
+  // time and the closer result is kept; a difference that remains is reported. 0 = no check.
+  double volume_check = 0.05;
   uint64_t seed = 1;             // every random choice derives from it (determinism)
   // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).
   std::string up_axis = "auto";

@@ -24,6 +24,17 @@ struct SingletonComponent {
   double volume = 0;
 };
 
+// The volume check of the singleton cell (docs/algorithm.md §6.5).
+struct VolumeCheck {
+  double estimate = -1;    // independent estimate of the volume the input encloses (< 0: none)
+  double cell = 0;         // the kept cell's volume (all components)
+  double ratio = 1;        // cell / estimate
+  std::string method;      // of the estimate: "signed volume" (closed input) or "vertical columns"
+  std::string oracle;      // the labelling kept: "parity" or "vertical"
+  bool relabelled = false; // the second labelling ran (disagreement, or no interior)
+  bool flagged = false;    // the disagreement remains beyond the threshold
+};
+
 struct Preprocessed {
   // Frame: complex coordinates c map to input coordinates by from_z_up(c + offset, up_axis).
   Vec3 offset;
@@ -47,6 +58,11 @@ struct Preprocessed {
   double hausdorff = -1, hausdorff_in_to_cell = -1, hausdorff_cell_to_in = -1, mean_distance = -1,
          mean_distance_cell_to_in = -1, mean_distance_symmetric = -1;
   bool closed = false, manifold = false;
+  // Open input (docs/algorithm.md §6.4): boundary length not covered by other boundary edges.
+  bool open_input = false;
+  double open_boundary_length = 0;
+  size_t boundary_wall_planes = 0;
+  VolumeCheck volume_check;
   bool truncated = false;
   double seconds = 0;
   std::vector<std::string> problems;

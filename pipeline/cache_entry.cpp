@@ -54,6 +54,15 @@ json outcome_to_json(const BuildingOutcome& b) {
           {"reason", b.reason},
           {"lod", b.lod},
           {"hausdorff", num(b.hausdorff)},
+          {"volume_check",
+           {{"estimate", num(b.volume_check.estimate)},
+            {"cell", num(b.volume_check.cell)},
+            {"ratio", num(b.volume_check.ratio)},
+            {"method", b.volume_check.method},
+            {"oracle", b.volume_check.oracle},
+            {"open_input", b.volume_check.open_input},
+            {"relabelled", b.volume_check.relabelled},
+            {"flagged", b.volume_check.flagged}}},
           {"problems", b.problems},
           {"levels", std::move(levels)},
           {"sizes",
@@ -88,6 +97,16 @@ void outcome_from_json(const json& j, BuildingOutcome& b) {
   b.reason = j.at("reason").get<std::string>();
   b.lod = j.at("lod").get<std::string>();
   b.hausdorff = get_num(j, "hausdorff");
+  if (const auto vc = j.find("volume_check"); vc != j.end() && vc->is_object()) {  // docs/algorithm.md §6.5
+    b.volume_check.estimate = get_num(*vc, "estimate");
+    b.volume_check.cell = get_num(*vc, "cell");
+    b.volume_check.ratio = get_num(*vc, "ratio");
+    b.volume_check.method = vc->value("method", std::string());
+    b.volume_check.oracle = vc->value("oracle", std::string());
+    b.volume_check.open_input = vc->value("open_input", false);
+    b.volume_check.relabelled = vc->value("relabelled", false);
+    b.volume_check.flagged = vc->value("flagged", false);
+  }
   b.problems = j.at("problems").get<std::vector<std::string>>();
   b.levels.clear();
   for (const json& lj : j.at("levels")) {

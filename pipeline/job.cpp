@@ -108,6 +108,15 @@ void set_status_attributes(BuildingOutcome& out) {
   if (std::isfinite(out.hausdorff)) a["morphcut_hausdorff"] = rounded(out.hausdorff, 1e-6);
   // What every level's parts must add up to (checked by `morphcut-city validate`).
   if (!out.levels.empty() && out.measures.volume) a["morphcut_cell_volume"] = rounded(*out.measures.volume, 1e-6);
+  // A cell whose volume disagrees with the independent estimate beyond preprocess.volume_check,
+  // after a second labelling: the status stays, the disagreement is on the Building
+  // (docs/algorithm.md §6.5, docs/output-format.md).
+  if (out.volume_check.flagged && !out.levels.empty())
+    a["morphcut_volume_check"] = {{"estimate", rounded(out.volume_check.estimate, 1e-3)},
+                                  {"cell", rounded(out.volume_check.cell, 1e-3)},
+                                  {"ratio", rounded(out.volume_check.ratio, 1e-4)},
+                                  {"method", out.volume_check.method},
+                                  {"oracle", out.volume_check.oracle}};
 }
 
 // One level's parts encoded and checked, not yet in the feature.
@@ -249,6 +258,20 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   out.size.cell_closed = pre.closed;
   out.size.cell_manifold = pre.manifold;
   if (pre.hausdorff >= 0) out.hausdorff = pre.hausdorff;
+  {  // the singleton cell's volume check (docs/algorithm.md §6.5)
+    const mc::VolumeCheck& v = pre.volume_check;
+    auto& o = out.volume_check;
+    if (v.estimate > 0) {
+      o.estimate = v.estimate;
+      o.ratio = v.ratio;
+      o.method = v.method;
+    }
+    o.cell = v.cell;
+    o.oracle = v.oracle;
+    o.open_input = pre.open_input;
+    o.relabelled = v.relabelled;
+    o.flagged = v.flagged;
+  }
   add_problems(out.problems, pre.problems);
   if (pre.components.empty()) throw std::runtime_error("preprocessing produced no interior cells");
 
@@ -394,7 +417,7 @@ size_t strip_previous_parts(mc::io::Feature& f) {
   }
   if (auto a = b->find("attributes"); a != b->end() && a->is_object())
     for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff",
-                          "morphcut_cell_volume", "morphcut_level"})
+                          "morphcut_cell_volume", "morphcut_level", "morphcut_volume_check"})
       a->erase(k);
   if (removed) compact_vertices(f);
   return removed;

@@ -59,6 +59,17 @@ struct Measures {
   std::optional<std::pair<double, double>> lonlat;  // WGS84, filled by the run (needs the CRS)
 };
 
+// The singleton cell's volume check (docs/algorithm.md §6.5): the cell against an independent
+// estimate of the volume the input encloses. `flagged`: the disagreement exceeds
+// preprocess.volume_check after a second labelling; the status stays as it is, the Building gets
+// `morphcut_volume_check` (docs/output-format.md).
+struct VolumeCheckOutcome {
+  double estimate = kNaN, cell = kNaN, ratio = kNaN;
+  std::string method;   // "signed volume" or "vertical columns"; empty: no estimate
+  std::string oracle;   // "parity" or "vertical": the labelling kept
+  bool open_input = false, relabelled = false, flagged = false;
+};
+
 struct BuildingOutcome {
   mc::io::Feature feature;  // the feature to write: input kept, parts and attributes added
   bool is_building = false; // false: passed through untouched, not in the reports
@@ -69,6 +80,7 @@ struct BuildingOutcome {
   Timings time;
   Sizes size;
   double hausdorff = kNaN;
+  VolumeCheckOutcome volume_check;
   std::vector<LevelOutcome> levels;  // the written levels, in level order
   Measures measures;
   std::vector<std::string> problems; // read/extraction/preprocessing problems (capped)

@@ -78,6 +78,11 @@ json building_report(const BuildingOutcome& b) {
   j["nodes_expanded"] = nodes;
   j["levels"] = std::move(levels);
   j["hausdorff"] = num(b.hausdorff);
+  if (!b.volume_check.method.empty() || !b.volume_check.oracle.empty())  // docs/algorithm.md §6.5
+    j["volume_check"] = {{"estimate", num(b.volume_check.estimate)}, {"cell", num(b.volume_check.cell)},
+                         {"ratio", num(b.volume_check.ratio)},       {"method", b.volume_check.method},
+                         {"oracle", b.volume_check.oracle},          {"open_input", b.volume_check.open_input},
+                         {"relabelled", b.volume_check.relabelled},  {"flagged", b.volume_check.flagged}};
   if (!b.problems.empty()) j["problems"] = b.problems;
   return j;
 }

@@ -35,6 +35,10 @@ std::vector<std::string> summary_columns(const std::vector<double>& thresholds) 
                         "mean_part_convexity", "largest_part_share", "max_degree", "end_parts", "centroid_x",
                         "centroid_y", "centroid_z", "centroid_method", "lon", "lat"})
     c.push_back(s);
+  // The singleton cell's volume check (docs/algorithm.md §6.5): cell / independent estimate, and
+  // whether the disagreement exceeds preprocess.volume_check.
+  c.push_back("volume_check_ratio");
+  c.push_back("volume_check_flagged");
   return c;
 }
 
@@ -84,6 +88,9 @@ void SummaryWriter::add(const BuildingOutcome& b) {
   w.field(m.centroid_method);
   if (m.lonlat) w.field(m.lonlat->first, 8).field(m.lonlat->second, 8);
   else w.empty().empty();
+  opt(w, b.volume_check.ratio, 6);
+  if (b.volume_check.method.empty()) w.empty();
+  else w.field(b.volume_check.flagged);
   w.end_row();
 }
 

@@ -1,0 +1,176 @@
+#include "core/open_input.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+namespace mc {
+
+namespace {
+
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double l2 = dot(ab, ab);
+  const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
+  return norm(p - (a + ab * t));
+}
+
+bool is_label(const PolygonMesh& mesh, int32_t s, const char* name) {
+  return s >= 0 && static_cast<size_t>(s) < mesh.semantic_labels.size() && mesh.semantic_labels[s] == name;
+}
+
+}  // namespace
+
+OpenInput analyse_open_input(const PolygonMesh& mesh, double dist) {
+  OpenInput out;
+  double lowest = 1e300;
+  for (const Vec3& v : mesh.vertices) lowest = std::min(lowest, v.z);
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const Polygon& f : mesh.faces)
+    for (const auto& r : f.rings)
+      for (size_t i = 0; i < r.size(); ++i) {
+        const uint32_t a = r[i], b = r[(i + 1) % r.size()];
+        if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
+      }
+  std::vector<std::pair<Vec3, Vec3>> edges;
+  for (const auto& [e, n] : uses) {
+    if (n == 1) edges.emplace_back(mesh.vertices[e.first], mesh.vertices[e.second]);
+    if (n > 2) ++out.nonmanifold_edges;
+  }
+  // Coverage by other boundary edges, bucketed by a coarse grid on the edges' midpoints' boxes.
+  for (size_t i = 0; i < edges.size(); ++i) {
+    const auto& [a, b] = edges[i];
+    const double len = norm(b - a);
+    out.boundary_length += len;
+    if (len <= 0) continue;
+    const Vec3 d = (b - a) * (1.0 / len);
+    int uncovered = 0;
+    for (int s = 0; s < 4; ++s) {
+      const Vec3 p = a + (b - a) * ((2 * s + 1) / 8.0);
+      bool covered = false;
+      for (size_t j = 0; j < edges.size() && !covered; ++j) {
+        if (j == i) continue;
+        const Vec3 e = edges[j].second - edges[j].first;
+        const double el = norm(e);
+        if (el <= 0 || std::abs(dot(e, d)) < 0.99 * el) continue;
+        covered = point_segment_distance(p, edges[j].first, edges[j].second) <= dist;
+      }
+      uncovered += !covered;
+    }
+    if (uncovered) {
+      if (std::max(a.z, b.z) > lowest + dist) out.uncovered_length += len * uncovered / 4.0;
+      out.uncovered_edges.push_back(edges[i]);
+    }
+  }
+  // Ground: semantic, else a downward horizontal face at the lowest level.
+  bool& semantics = out.semantics;
+  for (const Polygon& f : mesh.faces) {
+    if (f.semantic >= 0) semantics = true;
+    if (is_label(mesh, f.semantic, "GroundSurface")) out.has_ground = true;
+  }
+  if (!semantics)
+    for (const Polygon& f : mesh.faces) {
+      const FaceGeometry g = face_geometry(mesh, f);
+      if (std::abs(g.normal.z) < 0.99 || g.area <= 0 || f.rings.empty()) continue;
+      double zmax = -1e300;
+      for (uint32_t v : f.rings[0]) zmax = std::max(zmax, mesh.vertices[v].z);
+      if (zmax <= lowest + dist) out.has_ground = true;
+    }
+  return out;
+}
+
+std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, double angle_rad, double min_length,
+                                            double z_lo, double z_hi) {
+  struct Group {
+    Plane plane;
+    BBox box;
+    double length = 0;
+  };
+  std::vector<std::pair<double, size_t>> order;  // longest first
+  for (size_t i = 0; i < open.uncovered_edges.size(); ++i) {
+    const auto& [a, b] = open.uncovered_edges[i];
+    order.emplace_back(-std::hypot(b.x - a.x, b.y - a.y), i);
+  }
+  std::stable_sort(order.begin(), order.end());
+  std::vector<Group> groups;
+  const double cos_a = std::cos(angle_rad);
+  for (const auto& [neg_len, i] : order) {
+    const auto& [a, b] = open.uncovered_edges[i];
+    if (-neg_len <= dist) continue;  // (nearly) vertical edge: no vertical plane through it
+    Plane pl;
+    pl.n = Vec3{b.y - a.y, a.x - b.x, 0};
+    pl.d = 0;
+    if (!canonicalize(pl)) continue;
+    pl.d = -dot(pl.n, a);
+    Group* g = nullptr;
+    for (auto& h : groups)
+      if (std::abs(dot(h.plane.n, pl.n)) >= cos_a && std::abs(h.plane.signed_distance(a)) <= dist &&
+          std::abs(h.plane.signed_distance(b)) <= dist) {
+        g = &h;
+        break;
+      }
+    if (!g) {
+      groups.push_back({pl, {}, 0});
+      g = &groups.back();
+    }
+    g->box.add(a);
+    g->box.add(b);
+    g->length += -neg_len;
+  }
+  std::vector<HolePlane> out;
+  for (auto& g : groups) {
+    if (g.length < min_length) continue;
+    BBox b = g.box;
+    b.lo = b.lo - Vec3{dist, dist, 0};
+    b.hi = b.hi + Vec3{dist, dist, 0};
+    b.lo.z = z_lo;
+    b.hi.z = z_hi;
+    out.push_back({g.plane, b, 0.0});
+  }
+  return out;
+}
+
+std::vector<uint8_t> cover_triangles(const TriangleSoup& soup, const PolygonMesh& mesh) {
+  std::vector<uint8_t> out(soup.triangles.size(), 0);
+  for (size_t i = 0; i < soup.triangles.size(); ++i) {
+    const int32_t s = i < soup.source_face.size() && soup.source_face[i] < mesh.faces.size()
+                          ? mesh.faces[soup.source_face[i]].semantic
+                          : -1;
+    if (s >= 0 && static_cast<size_t>(s) < mesh.semantic_labels.size()) {
+      const std::string& l = mesh.semantic_labels[s];
+      if (l == "RoofSurface" || l == "GroundSurface") {
+        out[i] = 1;
+        continue;
+      }
+      if (l == "WallSurface" || l == "ClosureSurface" || l == "FloorSurface" || l == "CeilingSurface" ||
+          l == "InteriorWallSurface")
+        continue;
+    }
+    const auto& t = soup.triangles[i];
+    const Vec3 n = cross(soup.vertices[t[1]] - soup.vertices[t[0]], soup.vertices[t[2]] - soup.vertices[t[0]]);
+    const double l = norm(n);
+    out[i] = l > 0 && std::abs(n.z) >= 0.05 * l;
+  }
+  return out;
+}
+
+double closed_volume(const TriangleSoup& soup) {
+  std::unordered_map<uint64_t, int> balance;
+  for (const auto& t : soup.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = t[k], b = t[(k + 1) % 3];
+      if (a == b) continue;
+      const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+      balance[key] += a < b ? 1 : -1;
+    }
+  if (balance.empty()) return -1;
+  for (const auto& [k, c] : balance)
+    if (c != 0) return -1;
+  double v = 0;
+  for (const auto& t : soup.triangles)
+    v += dot(soup.vertices[t[0]], cross(soup.vertices[t[1]], soup.vertices[t[2]])) / 6;
+  return std::abs(v);
+}
+
+}  // namespace mc
