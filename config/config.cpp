@@ -107,14 +107,14 @@ class Loader {
   }
 
   void walk_top(const YAML::Node& root, std::vector<Field>& fields, LoadedConfig& out) {
-    std::vector<std::string> known = {"preprocess", "decompose"};
+    std::vector<std::string> known = {"preprocess", "decompose", "massing"};
     for (const auto& f : fields)
       if (!*f.section) known.push_back(f.name);
     for (const char* k : kRunKeys) known.push_back(k);
 
     each_key(root, "", [&](const std::string& name, const std::string& path, const YAML::Node& key,
                            const YAML::Node& value) {
-      if (name == "preprocess" || name == "decompose") {
+      if (name == "preprocess" || name == "decompose" || name == "massing") {
         walk_section(name, value, fields);
       } else if (Field* f = find(fields, "", name)) {
         set_field(*f, value);

@@ -101,11 +101,27 @@ void validate_dec(const DecomposeParams& d) {
   at_least("decompose.node_budget", static_cast<double>(d.node_budget), 1);
 }
 
+void validate_massing(const MassingParams& m) {
+  if (!std::isfinite(m.level) || !(m.level > 0 && m.level <= 1)) throw ConfigError("massing.level", "must be in (0, 1]");
+  at_least("massing.ground_tolerance", m.ground_tolerance, 0);
+  open_range("massing.stacked_angle_deg", m.stacked_angle_deg, 0, 90);
+  open_range("massing.side_angle_deg", m.side_angle_deg, 0, 90);
+  if (m.stacked_angle_deg + m.side_angle_deg > 90)
+    throw ConfigError("massing.side_angle_deg", "must leave stacked_angle_deg + side_angle_deg <= 90");
+  at_least("massing.wing_min_share", m.wing_min_share, 0);
+  at_least("massing.rooftop_max_share", m.rooftop_max_share, 0);
+  at_least("massing.podium_max_roof_share", m.podium_max_roof_share, 0);
+  at_least("massing.tower_min_slenderness", m.tower_min_slenderness, 0);
+  at_least("massing.tower_min_height_ratio", m.tower_min_height_ratio, 0);
+  at_least("massing.courtyard_min_area", m.courtyard_min_area, 0);
+}
+
 }  // namespace
 
 void validate(const Params& params, const RunConfig& run) {
   validate_pre(params.pre);
   validate_dec(params.dec);
+  validate_massing(params.massing);
   at_least("timeout_s", params.timeout_s, 0, " (0 disables the deadline)");
   at_least("max_faces", static_cast<double>(params.max_faces), 0, " (0 = no limit)");
   at_least("threads", params.threads, 0, " (0 = all cores)");

@@ -90,9 +90,25 @@ struct DecomposeParams {
   bool split_chains = true;
 };
 
+// Massing analytics of the written parts (pipeline/massing.hpp, docs/massing.md): contact
+// kinds, part roles and building features. Lengths in model units, angles in degrees.
+struct MassingParams {
+  double level = 0.01;                 // the LoD level whose parts give the building features
+  double ground_tolerance = 0.5;       // a part is grounded if its z_min is within this of the building's lowest z
+  double stacked_angle_deg = 10;       // a shared face within this of horizontal: stacked contact
+  double side_angle_deg = 10;          // a shared face within this of vertical: side contact (else inclined)
+  double wing_min_share = 0.2;         // grounded part >= this x the main part's volume: wing (else annex)
+  double rooftop_max_share = 0.1;      // raised part <= this x its support's volume: rooftop (else setback)
+  double podium_max_roof_share = 0.5;  // a tower's contact covers at most this share of the podium's footprint
+  double tower_min_slenderness = 1.0;  // a tower's height >= this x its footprint's width
+  double tower_min_height_ratio = 1.0; // a tower's height >= this x the podium's height
+  double courtyard_min_area = 10;      // footprint holes at least this large (model units^2) are courtyards
+};
+
 struct Params {
   PreprocessParams pre;
   DecomposeParams dec;
+  MassingParams massing;
   double timeout_s = 60;         // per-building deadline; <= 0 disables
   // Buildings with more input faces are skipped ("too large"): a mesh error or a whole terrain
   // filed as one Building would otherwise hold a worker for its whole deadline. 0 = no limit.

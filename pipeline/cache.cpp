@@ -25,7 +25,7 @@ using SteadyClock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr int kFormat = 2;  // 2: parts checked and repaired on the output grid (docs/output-format.md)
+constexpr int kFormat = 3;  // 2: parts checked and repaired on the output grid (docs/output-format.md); 3: massing analytics
 
 // Settings that do not change a complete result: worker threads, buildings in flight, logging
 // (outputs are byte-identical for any thread count). Everything else in the effective config is
@@ -146,6 +146,8 @@ void apply_entry(const json& payload, mc::io::Feature& f, BuildingOutcome& out) 
   out.size = staged.size;
   out.levels = std::move(staged.levels);
   out.measures = std::move(staged.measures);
+  out.massing = std::move(staged.massing);  // massing analytics (pipeline/massing.hpp)
+  out.volume_check = std::move(staged.volume_check);  // the cell's volume check (docs/algorithm.md §6.5)
   out.hausdorff = staged.hausdorff;
   out.problems = std::move(staged.problems);
 }

@@ -89,7 +89,8 @@ json outcome_to_json(const BuildingOutcome& b) {
             {"convexity", num(m.convexity)},
             {"footprint_method", m.footprint_method},
             {"centroid", centroid},
-            {"centroid_method", m.centroid_method}}}};
+            {"centroid_method", m.centroid_method}}},
+          {"massing", massing_to_json(b.massing)}};
 }
 
 void outcome_from_json(const json& j, BuildingOutcome& b) {
@@ -159,6 +160,7 @@ void outcome_from_json(const json& j, BuildingOutcome& b) {
   if (c.is_null()) m.centroid.reset();
   else m.centroid = Vec3{c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()};
   m.centroid_method = mj.at("centroid_method").get<std::string>();
+  massing_from_json(j.at("massing"), b.massing);
 }
 
 }  // namespace mc::pipeline

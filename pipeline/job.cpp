@@ -14,6 +14,7 @@
 #include "io/cityjson_building.hpp"
 #include "io/cityjson_common.hpp"
 #include "pipeline/level_views.hpp"
+#include "pipeline/massing.hpp"
 #include "pipeline/measures.hpp"
 #include "pipeline/part_objects.hpp"
 
@@ -117,6 +118,7 @@ void set_status_attributes(BuildingOutcome& out) {
                                   {"ratio", rounded(out.volume_check.ratio, 1e-4)},
                                   {"method", out.volume_check.method},
                                   {"oracle", out.volume_check.oracle}};
+  add_building_attributes(a, out.massing);  // issue 21: massing features
 }
 
 // One level's parts encoded and checked, not yet in the feature.
@@ -126,6 +128,7 @@ struct EncodedLevel {
   LevelOutcome lv;      // the geometric fields; the search fields are the caller's
   size_t dropped_faces = 0, repaired_parts = 0, split_faces = 0;
   std::string grid_repair;  // LevelOutcome::grid_repair
+  double check_seconds = 0;
   std::string defect;     // non-empty: a part fails the checks, and nothing of the level is kept
 };
 
@@ -152,6 +155,7 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
     if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton parts
     const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
     EncodedSolid solid = encode_solid(mesh, lod, version, pool);
+    e.check_seconds += solid.check_seconds;
     if (!solid.defect.empty()) {
       e.defect = "part " + std::to_string(j) + " is invalid on the output grid (" + solid.defect + ")";
       return e;
@@ -203,6 +207,7 @@ EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double 
   const size_t mark = pool.mark();
   EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
   if (e.defect.empty()) return e;
+  double spent = e.check_seconds;  // every attempt's checks count
   const std::string first = e.defect;
   if (pool.can_cluster())
     for (int steps : {1, 2, 4}) {
@@ -210,6 +215,8 @@ EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double 
       pool.cluster(steps, mark);
       e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
       pool.cluster(0, 0);
+      spent += e.check_seconds;
+      e.check_seconds = spent;
       if (e.defect.empty()) {
         e.grid_repair = "cluster " + std::to_string(steps);
         return e;
@@ -217,6 +224,7 @@ EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double 
     }
   pool.rollback(mark);
   e = encode_level(building, i, threshold, parts, pre, lod, version, pool, false);
+  e.check_seconds += spent;
   if (e.defect.empty()) {
     e.grid_repair = "non-conforming";
     return e;
@@ -298,6 +306,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     std::string fallback = src.fallback;
     const size_t mark = pool.mark();
     EncodedLevel e = encode_level_on_grid(out.id, i, p.dec.levels[i], *parts, pre, lod, h.version, pool);
+    out.time.check += e.check_seconds;
     if (!e.defect.empty()) {
       // A part that is not a valid solid (core's part mesh has a non-manifold edge) is never
       // written. Stand-ins, in order: the previous written level, a finer level (more parts,
@@ -312,6 +321,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
       std::string tried;
       for (const auto& [alt, name] : stand_ins) {
         e = encode_level_on_grid(out.id, i, p.dec.levels[i], *alt, pre, lod, h.version, pool);
+        out.time.check += e.check_seconds;
         if (e.defect.empty()) {
           fallback = name;
           parts = alt;
@@ -341,11 +351,26 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     out.size.parts_repaired += e.repaired_parts;
     out.size.split_faces += e.split_faces;
     lv.grid_repair = e.grid_repair;
+    {  // massing analytics (issue 21, pipeline/massing.hpp): roles and contacts as part attributes
+      const auto tm = Clock::now();
+      const bool own = e.grid_repair == "non-conforming";  // those meshes carry no neighbours
+      std::vector<PolygonMesh> own_meshes;
+      if (own) own_meshes = level_part_meshes(pre, *parts);
+      LevelMassing lm = analyse_level(own ? own_meshes : e.meshes, *parts, i, p.dec.levels[i], p.massing);
+      for (size_t j = 0; j < e.staged.size() && j < lm.parts.size(); ++j)
+        add_part_attributes(attributes_of(e.staged[j].object), lm, j, out.id);
+      out.massing.levels.push_back(std::move(lm));
+      out.time.massing += since(tm);
+    }
     for (auto& s : e.staged) staged.push_back(std::move(s));
     if (first_level_meshes.empty()) first_level_meshes = std::move(e.meshes);
     out.levels.push_back(std::move(lv));
     last_good = parts;
   }
+
+  const auto tm = Clock::now();
+  finish_massing(out.massing, p.massing);  // building features at the analysis level
+  out.time.massing += since(tm);
 
   // Whole building: volume, convexity against the hull of all part vertices (= the singleton's
   // hull, every singleton vertex being a part vertex), volume centroid.
@@ -419,6 +444,8 @@ size_t strip_previous_parts(mc::io::Feature& f) {
     for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff",
                           "morphcut_cell_volume", "morphcut_level", "morphcut_volume_check"})
       a->erase(k);
+  if (auto a = b->find("attributes"); a != b->end() && a->is_object())
+    for (const auto& k : building_attribute_names()) a->erase(k);
   if (removed) compact_vertices(f);
   return removed;
 }
@@ -487,6 +514,7 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
   }
   if (out.status == "failed") {
     out.levels.clear();
+    out.massing = {};
     out.size.parts_written = 0;
   }
   set_status_attributes(out);

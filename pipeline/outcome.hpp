@@ -8,6 +8,7 @@
 
 #include "core/vec3.hpp"
 #include "io/cityjson_types.hpp"
+#include "pipeline/massing.hpp"
 
 namespace mc::pipeline {
 
@@ -39,6 +40,8 @@ struct LevelOutcome {
 
 struct Timings {
   double read = 0, extract = 0, preprocess = 0, decompose = 0, encode = 0, job = 0, write = 0;
+  double massing = 0;  // massing analytics (pipeline/massing.hpp), a part of encode
+  double check = 0;    // checking (and repairing) the parts on the output grid, a part of encode
 };
 
 struct Sizes {
@@ -83,6 +86,7 @@ struct BuildingOutcome {
   VolumeCheckOutcome volume_check;
   std::vector<LevelOutcome> levels;  // the written levels, in level order
   Measures measures;
+  BuildingMassing massing;  // part roles, contacts and building features (pipeline/massing.hpp)
   std::vector<std::string> problems; // read/extraction/preprocessing problems (capped)
   size_t sequence = 0;      // input order (set by the run)
 };

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <iterator>
 #include <limits>
@@ -89,8 +90,10 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
     }
     faces.push_back(std::move(g));
   }
+  const auto t0 = std::chrono::steady_clock::now();
   const size_t bent = triangulate_bent_shared_faces(faces, pool.vertices());
   PartRepair checked = check_and_repair(std::move(faces), pool.vertices());
+  out.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.defect = std::move(checked.defect);
   out.repaired = checked.repaired;
   out.split_faces = checked.split_faces + bent;

@@ -54,6 +54,7 @@ struct EncodedSolid {
   size_t dropped_faces = 0; // faces that collapsed to nothing on the grid
   size_t split_faces = 0;   // faces written as several polygons to pass the checks
   bool repaired = false;    // the part needed a repair to pass the checks
+  double check_seconds = 0; // spent checking and repairing
   // Empty when the written solid passes every check; otherwise why not (nothing may be written).
   std::string defect;
 };

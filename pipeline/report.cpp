@@ -49,6 +49,16 @@ json building_report(const BuildingOutcome& b) {
                {"end_parts", l.end_parts}};
     if (!l.fallback.empty()) lj["fallback"] = l.fallback;
     if (!l.grid_repair.empty()) lj["grid_repair"] = l.grid_repair;
+    for (const auto& lm : b.massing.levels)  // part roles (pipeline/massing.hpp)
+      if (lm.index == l.index) {
+        json roles = json::object();
+        for (const char* r : {"main", "wing", "annex", "podium", "tower", "setback", "rooftop"}) {
+          int k = 0;
+          for (const auto& pm : lm.parts) k += pm.role == r;
+          if (k) roles[r] = k;
+        }
+        lj["roles"] = std::move(roles);
+      }
     levels.push_back(std::move(lj));
   }
   json level_secs = json::array();
@@ -56,7 +66,9 @@ json building_report(const BuildingOutcome& b) {
   j["timings"] = {{"read", secs(b.time.read)},       {"extract", secs(b.time.extract)},
                   {"preprocess", secs(b.time.preprocess)}, {"decompose", secs(b.time.decompose)},
                   {"levels", level_secs},            {"encode", secs(b.time.encode)},
+                  {"check", secs(b.time.check)},
                   {"job", secs(b.time.job)},         {"write", secs(b.time.write)}};
+  j["timings"]["massing"] = secs(b.time.massing);
   j["sizes"] = {{"input_vertices", b.size.input_vertices},
                 {"input_faces", b.size.input_faces},
                 {"regions", b.size.regions},
@@ -83,6 +95,11 @@ json building_report(const BuildingOutcome& b) {
                          {"ratio", num(b.volume_check.ratio)},       {"method", b.volume_check.method},
                          {"oracle", b.volume_check.oracle},          {"open_input", b.volume_check.open_input},
                          {"relabelled", b.volume_check.relabelled},  {"flagged", b.volume_check.flagged}};
+  if (b.massing.features.valid) {  // building massing features (pipeline/massing.hpp)
+    nlohmann::json f = nlohmann::json::object();
+    add_building_attributes(f, b.massing);
+    j["massing"] = json::parse(f.dump());
+  }
   if (!b.problems.empty()) j["problems"] = b.problems;
   return j;
 }

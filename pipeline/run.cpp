@@ -34,6 +34,7 @@
 #include "pipeline/report.hpp"
 #include "pipeline/sha256.hpp"
 #include "pipeline/summary_csv.hpp"
+#include "pipeline/graph_export.hpp"
 
 namespace mc::pipeline {
 
@@ -185,6 +186,10 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   std::unique_ptr<SummaryWriter> summary;
   if (!opt.report.empty()) report = std::make_unique<ReportWriter>(opt.report);
   if (!opt.summary.empty()) summary = std::make_unique<SummaryWriter>(opt.summary, written_levels);
+  std::unique_ptr<GraphWriter> graph;  // massing analytics (docs/massing.md)
+  std::unique_ptr<MassingGpkgWriter> gpkg;
+  if (!opt.graph.empty()) graph = std::make_unique<GraphWriter>(opt.graph);
+  if (!opt.gpkg.empty()) gpkg = std::make_unique<MassingGpkgWriter>(opt.gpkg, header.crs, written_levels);
 
   std::optional<size_t> total;
   if (opt.progress && opt.input != "-" && ends_with(opt.input, ".jsonl")) total = count_sequence_features(opt.input);
@@ -272,6 +277,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
           b.measures.lonlat = crs.to_lonlat(b.measures.centroid->x, b.measures.centroid->y, b.measures.centroid->z);
         if (report) report->add(b);
         if (summary) summary->add(b);
+        if (graph) graph->add(b);
+        if (gpkg) gpkg->add(b);
       }
     } catch (...) {
       write_error = std::current_exception();
@@ -297,6 +304,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   writer.close();
   for (auto& lw : level_writers) lw->close();
   if (summary) summary->commit();
+  if (graph) graph->commit();
+  if (gpkg) gpkg->commit();
   res.reader_problems = reader.problems();
   if (cache) res.cache = cache->stats();
   res.wall_seconds = since(start);
@@ -323,7 +332,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
           {"crs", header.crs},
           {"bytes", ec ? ojson(nullptr) : ojson(bytes)},
           {"sha256", sha.empty() ? ojson(nullptr) : ojson(sha)}}},
-        {"outputs", {{"cityjson", opt.output}, {"levels", level_outputs}, {"report", opt.report}, {"summary", opt.summary}}},
+        {"outputs", {{"cityjson", opt.output}, {"levels", level_outputs}, {"report", opt.report}, {"summary", opt.summary}, {"graph", opt.graph}, {"gpkg", opt.gpkg}}},
         {"config_file", opt.config_file.empty() ? ojson(nullptr) : ojson(opt.config_file)},
         {"config", ojson::parse(effective_config_json(params, rc).dump())},
         {"threads", res.threads},

@@ -25,6 +25,8 @@ struct RunOptions {
   std::string output;       // .jsonl = CityJSONSeq, else .city.json
   std::string report;       // empty = no run report
   std::string summary;      // empty = no summary CSV
+  std::string graph;        // part graphs, one building per line (pipeline/graph_export.hpp); empty = none
+  std::string gpkg;         // GeoPackage of building and part footprints; empty = none
   std::string config_file;  // recorded in the report (empty = defaults)
   std::string cache_dir;    // per-building result cache (pipeline/cache.hpp); empty = none
   bool progress = false;    // draw the progress bar on stderr

@@ -18,13 +18,17 @@ std::string threshold_text(double v) {
   return o.str();
 }
 
-void opt(mc::io::CsvWriter& w, const std::optional<double>& v, int precision) {
-  if (v && std::isfinite(*v)) w.field(*v, precision);
-  else w.empty();
+using Row = std::vector<SummaryCell>;
+void text(Row& r, const std::string& s) { r.push_back({SummaryCell::Text, s, 0, 0, 0}); }
+void integer(Row& r, long long v) { r.push_back({SummaryCell::Integer, std::to_string(v), v, 0, 0}); }
+void empty(Row& r) { r.push_back({}); }
+void real(Row& r, double v, int precision) {
+  if (!std::isfinite(v)) return empty(r);
+  r.push_back({SummaryCell::Real, mc::io::format_fixed(v, precision), 0, v, precision});
 }
-void opt(mc::io::CsvWriter& w, double v, int precision) {
-  if (std::isfinite(v)) w.field(v, precision);
-  else w.empty();
+void opt(Row& r, const std::optional<double>& v, int precision) {
+  if (v) real(r, *v, precision);
+  else empty(r);
 }
 }  // namespace
 
@@ -35,11 +39,71 @@ std::vector<std::string> summary_columns(const std::vector<double>& thresholds) 
                         "mean_part_convexity", "largest_part_share", "max_degree", "end_parts", "centroid_x",
                         "centroid_y", "centroid_z", "centroid_method", "lon", "lat"})
     c.push_back(s);
+  for (const auto& s : massing_columns()) c.push_back(s);  // pipeline/massing.hpp
   // The singleton cell's volume check (docs/algorithm.md §6.5): cell / independent estimate, and
   // whether the disagreement exceeds preprocess.volume_check.
   c.push_back("volume_check_ratio");
   c.push_back("volume_check_flagged");
   return c;
+}
+
+std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector<double>& thresholds) {
+  Row w;
+  text(w, b.id);
+  text(w, b.status);
+  text(w, b.reason);
+  text(w, b.lod);
+  for (double t : thresholds) {
+    const LevelOutcome* l = nullptr;
+    for (const auto& x : b.levels)
+      if (x.threshold == t) l = &x;
+    if (l) integer(w, static_cast<long long>(l->parts));
+    else empty(w);
+  }
+  const Measures& m = b.measures;
+  opt(w, m.height, 3);
+  opt(w, m.footprint_area, 3);
+  text(w, m.footprint_method);
+  opt(w, m.volume, 3);
+  opt(w, m.convexity, 6);
+  if (!b.levels.empty()) {
+    const LevelOutcome& f = b.levels.back();
+    real(w, f.mean_convexity, 6);
+    real(w, f.largest_share, 6);
+    integer(w, f.max_degree);
+    integer(w, f.end_parts);
+  } else {
+    for (int i = 0; i < 4; ++i) empty(w);
+  }
+  if (m.centroid) {
+    real(w, m.centroid->x, 3);
+    real(w, m.centroid->y, 3);
+    real(w, m.centroid->z, 3);
+  } else {
+    for (int i = 0; i < 3; ++i) empty(w);
+  }
+  text(w, m.centroid_method);
+  if (m.lonlat) {
+    real(w, m.lonlat->first, 8);
+    real(w, m.lonlat->second, 8);
+  } else {
+    empty(w);
+    empty(w);
+  }
+  const MassingFeatures& f = b.massing.features;
+  if (f.valid) {
+    real(w, f.level, 6);
+    for (int v : {f.tiers, f.setbacks, f.wings, f.annexes, f.rooftop_units, f.courtyards}) integer(w, v);
+    text(w, f.tower_on_podium ? "true" : "false");
+    integer(w, f.edges);
+    integer(w, f.cycles);
+  } else {
+    for (size_t i = 0; i < massing_columns().size(); ++i) empty(w);
+  }
+  real(w, b.volume_check.ratio, 6);
+  if (b.volume_check.method.empty()) empty(w);
+  else text(w, b.volume_check.flagged ? "true" : "false");
+  return w;
 }
 
 SummaryWriter::SummaryWriter(const std::string& path, std::vector<double> thresholds)
@@ -58,39 +122,12 @@ SummaryWriter::~SummaryWriter() = default;
 
 void SummaryWriter::add(const BuildingOutcome& b) {
   auto& w = *csv_;
-  w.field(b.id).field(b.status).field(b.reason).field(b.lod);
-  for (double t : thresholds_) {
-    const LevelOutcome* l = nullptr;
-    for (const auto& x : b.levels)
-      if (x.threshold == t) l = &x;
-    if (l) w.field(l->parts);
-    else w.empty();
+  for (const SummaryCell& c : summary_row(b, thresholds_)) {
+    if (c.kind == SummaryCell::Empty) w.empty();
+    else if (c.kind == SummaryCell::Text) w.field(c.text);
+    else if (c.kind == SummaryCell::Integer) w.field(c.integer);
+    else w.field(c.real, c.precision);
   }
-  const Measures& m = b.measures;
-  opt(w, m.height, 3);
-  opt(w, m.footprint_area, 3);
-  w.field(m.footprint_method);
-  opt(w, m.volume, 3);
-  opt(w, m.convexity, 6);
-  if (!b.levels.empty()) {
-    const LevelOutcome& f = b.levels.back();
-    opt(w, f.mean_convexity, 6);
-    opt(w, f.largest_share, 6);
-    w.field(f.max_degree).field(f.end_parts);
-  } else {
-    w.empty().empty().empty().empty();
-  }
-  if (m.centroid) {
-    w.field(m.centroid->x, 3).field(m.centroid->y, 3).field(m.centroid->z, 3);
-  } else {
-    w.empty().empty().empty();
-  }
-  w.field(m.centroid_method);
-  if (m.lonlat) w.field(m.lonlat->first, 8).field(m.lonlat->second, 8);
-  else w.empty().empty();
-  opt(w, b.volume_check.ratio, 6);
-  if (b.volume_check.method.empty()) w.empty();
-  else w.field(b.volume_check.flagged);
   w.end_row();
 }
 

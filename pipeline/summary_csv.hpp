@@ -10,7 +10,9 @@
 //                     of the finest written level (end parts: exactly one neighbour),
 //   centroid_x/y/z    volume centroid of the solid in the source CRS (input bounding-box centre
 //   centroid_method   when there is no solid: "solid" / "bbox"),
-//   lon, lat          WGS84 degrees of the centroid (empty without a usable CRS).
+//   lon, lat          WGS84 degrees of the centroid (empty without a usable CRS),
+//   morphcut_massing_level, morphcut_tiers, _setbacks, _wings, _annexes, _rooftop_units,
+//   _courtyards, _tower_on_podium, _graph_edges, _graph_cycles   massing features (docs/massing.md).
 // Unknown values are empty fields (read as NULL by QGIS).
 #pragma once
 #include <memory>
@@ -28,6 +30,17 @@ namespace mc::pipeline {
 
 // The header row for these written level thresholds.
 std::vector<std::string> summary_columns(const std::vector<double>& level_thresholds);
+
+// One cell of a row: its CSV text and typed value (the GeoPackage's buildings layer has the same columns).
+struct SummaryCell {
+  enum Kind { Empty, Text, Integer, Real } kind = Empty;
+  std::string text;
+  long long integer = 0;
+  double real = 0;
+  int precision = 0;
+};
+// The row of one building, in the order of summary_columns.
+std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector<double>& level_thresholds);
 
 class SummaryWriter {
  public:

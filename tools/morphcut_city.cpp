@@ -14,6 +14,7 @@
 #include "io/errors.hpp"
 #include "pipeline/cli.hpp"
 #include "pipeline/html_report.hpp"
+#include "pipeline/graph_export.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/subcommands.hpp"
@@ -53,6 +54,10 @@ const char* kFooter = R"(Outputs (written to the current directory, REPORT and S
            and per-level results for every building
   SUMMARY  <stem>.morphcut.csv: one RFC 4180 row per building for planners (parts per level,
            height, footprint, volume, convexities, part-graph statistics, centroid, lon/lat)
+  GRAPH    <stem>.morphcut.graph.jsonl: per building and level the part graph (nodes with role
+           and geometry, edges with contact kind and shared area; docs/massing.md)
+  GPKG     <stem>.morphcut.gpkg: GeoPackage with layers `buildings` (footprint, every SUMMARY
+           column) and `parts` (each part's footprint, level, role, z range, volume, convexity)
   HTML     <stem>.morphcut.html beside the report (REPORT with .report.json -> .html): one
            self-contained page that works offline (run summary, plots, plan of the footprints, 3D
            view of each building's parts per level); `morphcut-city html REPORT.json` remakes it
@@ -86,7 +91,8 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "html") return mc::pipeline::html_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
-  std::string input, config_path, output, report, summary, lod, cache_dir, html;
+  std::string input, config_path, output, report, summary, lod, cache_dir, html, graph, gpkg;
+  bool no_graph = false, no_gpkg = false;
   int threads = -1;
   double timeout = -1;
   bool quiet = false, no_report = false, no_summary = false, no_html = false;
@@ -107,6 +113,10 @@ int main(int argc, char** argv) {
                  "reuse their earlier parts; safe to share between concurrent runs");
   app.add_flag("--no-report", no_report, "do not write the run report");
   app.add_flag("--no-summary", no_summary, "do not write the summary CSV");
+  app.add_option("--graph", graph, "part graphs, one building per line (default: <stem>.morphcut.graph.jsonl)");
+  app.add_flag("--no-graph", no_graph, "do not write the part graphs");
+  app.add_option("--gpkg", gpkg, "GeoPackage of building and part footprints (default: <stem>.morphcut.gpkg)");
+  app.add_flag("--no-gpkg", no_gpkg, "do not write the GeoPackage");
   app.add_option("--html", html, "HTML page of the run (default: the report's name with .report.json -> .html)");
   app.add_flag("--no-html", no_html, "do not write the HTML page");
   app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
@@ -130,6 +140,8 @@ int main(int argc, char** argv) {
     const std::string stem = !output.empty() ? output_stem(output) : stem_of(input);
     opt.report = no_report ? "" : (!report.empty() ? report : stem + ".morphcut.report.json");
     opt.summary = no_summary ? "" : (!summary.empty() ? summary : stem + ".morphcut.csv");
+    opt.graph = no_graph ? "" : (!graph.empty() ? graph : mc::pipeline::graph_path_for_stem(stem));
+    opt.gpkg = no_gpkg ? "" : (!gpkg.empty() ? gpkg : mc::pipeline::gpkg_path_for_stem(stem));
     opt.config_file = config_path;
     opt.cache_dir = cache_dir;
     opt.progress = !quiet && mc::pipeline::stderr_is_tty();
