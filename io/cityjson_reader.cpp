@@ -9,13 +9,10 @@
 namespace mc::io {
 
 namespace {
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 }  // namespace
 
 CityJsonReader::CityJsonReader(const std::string& path)
-    : impl_(path == "-" || ends_with(path, ".jsonl") ? open_sequence_reader(path) : open_document_reader(path)) {}
+    : impl_(path == "-" || path.ends_with(".jsonl") ? open_sequence_reader(path) : open_document_reader(path)) {}
 CityJsonReader::~CityJsonReader() = default;
 CityJsonReader::CityJsonReader(CityJsonReader&&) noexcept = default;
 CityJsonReader& CityJsonReader::operator=(CityJsonReader&&) noexcept = default;

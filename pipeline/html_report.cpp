@@ -36,9 +36,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMm = 1000.0;  // 3D vertices: millimetre grid
 constexpr double kDm = 10.0;    // plan footprints: decimetre grid
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 template <class J>
 const J& member(const J& j, const char* key) {
@@ -640,7 +637,7 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
 }  // namespace
 
 std::string html_path_for_report(const std::string& report_path) {
-  if (ends_with(report_path, ".report.json")) return report_path.substr(0, report_path.size() - 12) + ".html";
+  if (report_path.ends_with(".report.json")) return report_path.substr(0, report_path.size() - 12) + ".html";
   return report_path + ".html";
 }
 

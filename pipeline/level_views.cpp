@@ -13,9 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 double part_level(const json& object) { return object["attributes"]["morphcut_level"].get<double>(); }
 
@@ -53,7 +50,7 @@ mc::io::Feature with_parts(const mc::io::Feature& f, Keep keep) {
 std::string level_output_path(const std::string& output, double threshold) {
   std::string base = output, ext;
   for (const char* e : {".city.jsonl", ".city.json", ".jsonl", ".json"})
-    if (ends_with(output, e)) {
+    if (output.ends_with(e)) {
       ext = e;
       base = output.substr(0, output.size() - ext.size());
       break;

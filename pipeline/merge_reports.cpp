@@ -24,13 +24,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 std::string strip_suffix(const std::string& name, std::initializer_list<std::string_view> suffixes) {
   for (std::string_view ext : suffixes)
-    if (ends_with(name, ext) && name.size() > ext.size()) return name.substr(0, name.size() - ext.size());
+    if (name.ends_with(ext) && name.size() > ext.size()) return name.substr(0, name.size() - ext.size());
   return name;
 }
 
@@ -120,7 +117,7 @@ std::string tile_name_of_report(const std::string& report_path) {
 }
 
 std::string csv_beside_report(const std::string& report_path) {
-  if (!ends_with(report_path, ".morphcut.report.json")) return {};
+  if (!report_path.ends_with(".morphcut.report.json")) return {};
   return report_path.substr(0, report_path.size() - std::string_view(".report.json").size()) + ".csv";
 }
 

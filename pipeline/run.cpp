@@ -61,9 +61,6 @@ double peak_rss_mb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 // Features in a CityJSONSeq file = non-empty lines after the first; for the progress bar only.
 std::optional<size_t> count_sequence_features(const std::string& path) {
@@ -192,7 +189,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   if (!opt.gpkg.empty()) gpkg = std::make_unique<MassingGpkgWriter>(opt.gpkg, header.crs, written_levels);
 
   std::optional<size_t> total;
-  if (opt.progress && opt.input != "-" && ends_with(opt.input, ".jsonl")) total = count_sequence_features(opt.input);
+  if (opt.progress && opt.input != "-" && opt.input.ends_with(".jsonl")) total = count_sequence_features(opt.input);
   Progress progress(opt.progress, total);
   std::optional<InterruptWatchdog> watchdog;
   if (opt.handle_signals) watchdog.emplace(opt.interrupt_grace_s);

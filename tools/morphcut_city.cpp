@@ -21,16 +21,13 @@
 
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 // "tiles/5910.city.json" -> "5910"; "-" -> "stdin".
 std::string stem_of(const std::string& input) {
   if (input == "-") return "stdin";
   std::string name = std::filesystem::path(input).filename().string();
   for (const char* ext : {".city.jsonl", ".city.json", ".jsonl", ".json", ".gml.gz", ".xml.gz", ".gml", ".xml"})
-    if (ends_with(name, ext) && name.size() > std::string(ext).size()) return name.substr(0, name.size() - std::string(ext).size());
+    if (name.ends_with(ext) && name.size() > std::string(ext).size()) return name.substr(0, name.size() - std::string(ext).size());
   return name;
 }
 
@@ -38,7 +35,7 @@ std::string stem_of(const std::string& input) {
 std::string output_stem(const std::string& output) {
   const std::filesystem::path p(output);
   std::string name = stem_of(output);
-  if (ends_with(name, ".morphcut") && name.size() > 9) name.resize(name.size() - 9);
+  if (name.ends_with(".morphcut") && name.size() > 9) name.resize(name.size() - 9);
   return (p.parent_path() / name).string();
 }
 
@@ -131,7 +128,7 @@ int main(int argc, char** argv) {
     if (timeout >= 0) cfg.params.timeout_s = timeout;
     if (!lod.empty()) cfg.run.lod = lod;
 
-    const bool sequence = input == "-" || ends_with(input, ".jsonl");
+    const bool sequence = input == "-" || input.ends_with(".jsonl");
     mc::pipeline::RunOptions opt;
     opt.input = input;
     opt.output = !output.empty() ? output : stem_of(input) + (sequence ? ".morphcut.city.jsonl" : ".morphcut.city.json");
