@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -54,6 +55,13 @@ struct Work {
   BuildingOutcome outcome;
 };
 using Msg = std::shared_ptr<Work>;
+
+// User + system CPU seconds of the whole process so far (every thread).
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+}
 
 double peak_rss_mb() {
   rusage u{};
@@ -336,6 +344,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         {"in_flight", res.in_flight},
         {"wall_seconds", res.wall_seconds},
         {"buildings_per_second", res.wall_seconds > 0 ? res.buildings / res.wall_seconds : 0.0},
+        {"cpu_seconds", std::round(cpu_seconds() * 1e3) / 1e3},
         {"peak_rss_mb", res.peak_rss_mb},
         {"features", res.features},
         {"building_count", res.buildings},

@@ -97,6 +97,7 @@ TEST(Run, CityJsonFileEveryObjectKeptPartsClosedReportsComplete) {
   EXPECT_EQ(r["counts"]["ok"], 2);
   EXPECT_EQ(r["config"]["decompose"]["levels"].size(), 4u);
   EXPECT_GT(r["wall_seconds"].get<double>(), 0);
+  EXPECT_GT(r["cpu_seconds"].get<double>(), 0);  // every thread's user + system time
   ASSERT_EQ(r["buildings"].size(), 2u);
   for (const auto& b : r["buildings"]) {
     EXPECT_EQ(b["status"], "ok");
