@@ -108,7 +108,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
 
   const bool vertical_ok = open.vertical_applicable();
   const bool want_vertical = p.oracle == "vertical" || (p.oracle != "parity" && out.open_input && vertical_ok);
-  if (want_vertical || out.open_input) {
+  // (also when parity labels first but the vertical vote may label a second time, §6.5)
+  if (want_vertical || (out.open_input && vertical_ok)) {
     for (const HolePlane& h : boundary_wall_planes(open, out.dist, out.angle_rad,
                                                    sp.min_area / std::max(out.box.hi.z - out.box.lo.z, out.dist),
                                                    out.box.lo.z,

@@ -19,6 +19,9 @@
 #include "io/cityjson.hpp"
 #include "io/cityjson_building.hpp"
 #include "io/cityjson_reader.hpp"
+#include "config/run_config.hpp"
+#include "pipeline/job.hpp"
+#include "pipeline/report.hpp"
 
 namespace mc::test {
 namespace {
@@ -124,6 +127,57 @@ TEST(OpenModels, VolumeCheckRelabelsWithTheOtherOracle) {
   const auto off = cells_of(source("datasets/open_models/gable_roof_only.city.json"), {}, p);
   EXPECT_FALSE(off.begin()->second.check.relabelled);
   EXPECT_EQ(off.begin()->second.check.oracle, "parity");
+}
+
+// Closed inputs keep today's labelling: the parity oracle, no second labelling, the same cell as
+// with the oracle forced to parity and the check off.
+TEST(OpenModels, ClosedInputsKeepTheParityCell) {
+  PreprocessParams old;
+  old.oracle = "parity";
+  old.volume_check = 0;
+  for (const char* f : {"terraced_row.closed", "gable_roof_only.closed", "l_shape_roof_only.closed"}) {
+    const std::string path = source(std::string("datasets/open_models/") + f + ".city.json");
+    const auto now = cells_of(path), before = cells_of(path, {}, old);
+    for (const auto& [id, c] : now) {
+      SCOPED_TRACE(id);
+      EXPECT_EQ(c.check.oracle, "parity");
+      EXPECT_FALSE(c.check.relabelled);
+      EXPECT_EQ(c.volume, before.at(id).volume);
+    }
+  }
+}
+
+// The pipeline carries a remaining disagreement to the Building (morphcut_volume_check) and to
+// the run report; the status stays ok. A threshold of 1e-9 flags the column integration's own
+// discretisation error on the roof-only gable.
+TEST(OpenModels, AFlaggedDisagreementReachesTheBuildingAndTheReport) {
+  io::CityJsonReader r(source("datasets/open_models/gable_roof_only.city.json"));
+  io::Feature f;
+  ASSERT_TRUE(r.next(f));
+  Params p;
+  p.pre.volume_check = 1e-9;
+  p.dec.levels = {0.1};
+  const pipeline::BuildingOutcome b = pipeline::run_building(f, r.header(), p, RunConfig{});
+  EXPECT_EQ(b.status, "ok") << b.reason;
+  EXPECT_TRUE(b.volume_check.flagged);
+  EXPECT_EQ(b.volume_check.oracle, "vertical");
+  EXPECT_EQ(b.volume_check.method, "vertical columns");
+  const auto& o = b.feature.objects;
+  bool found = false;
+  for (const auto& obj : o)
+    if (obj.is_object() && obj.contains("attributes") && obj["attributes"].contains("morphcut_volume_check")) {
+      const auto& v = obj["attributes"]["morphcut_volume_check"];
+      EXPECT_NEAR(v["cell"].get<double>(), 105.0, 1.05);
+      EXPECT_EQ(v["method"], "vertical columns");
+      found = true;
+    }
+  EXPECT_TRUE(found);
+  const auto j = pipeline::building_report(b);
+  ASSERT_TRUE(j.contains("volume_check"));
+  EXPECT_TRUE(j["volume_check"]["flagged"].get<bool>());
+  // With the default threshold the same building is not flagged.
+  p.pre.volume_check = 0.05;
+  EXPECT_FALSE(pipeline::run_building(f, r.header(), p, RunConfig{}).volume_check.flagged);
 }
 
 // Real data: 3D BAG buildings whose party walls (variant a), walls (b) or ground (c) are removed
