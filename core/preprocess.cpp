@@ -26,7 +26,8 @@ double seconds_since(Clock::time_point t0) {
 }
 }  // namespace
 
-Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline) {
+Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline,
+                        double terrain_z) {
   const auto t0 = Clock::now();
   Preprocessed out;
   out.input_faces = input.faces.size();
@@ -103,6 +104,22 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // Open inputs (missing walls, grounds, roofs): the vertical planes of their open boundary,
   // after the hole planes, so that a missing wall is closed where its roof or ground ends.
   const OpenInput open = analyse_open_input(mesh, out.dist);
+  // The ground level of the vertical vote: the input's lowest height, or for a model with neither
+  // a ground nor walls (roofs only) the terrain height the file gives, when it is lower (§6.4).
+  double ground_z = out.box.lo.z;
+  if (std::isfinite(terrain_z) && out.up_axis == 2 && !open.has_ground) {
+    bool walls = false;
+    for (const Polygon& f : mesh.faces) {
+      const FaceGeometry g = face_geometry(mesh, f);
+      walls |= g.area > 0 && std::abs(g.normal.z) < 0.17;
+    }
+    const double t = terrain_z - out.offset.z;
+    if (!walls && t < out.box.lo.z - out.dist) {
+      ground_z = t;
+      out.ground_from_terrain = true;
+      cbox.lo.z = std::min(cbox.lo.z, ground_z - pad);
+    }
+  }
   out.open_input = open.open(out.cell_size);
   out.open_boundary_length = open.uncovered_length;
 
@@ -112,7 +129,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   if (want_vertical || (out.open_input && vertical_ok)) {
     for (const HolePlane& h : boundary_wall_planes(open, out.dist, out.angle_rad,
                                                    sp.min_area / std::max(out.box.hi.z - out.box.lo.z, out.dist),
-                                                   out.box.lo.z,
+                                                   ground_z,
                                                    out.box.hi.z)) {
       // A plane the carving already has (the rest of a wall whose shared part was left out) is
       // offered where the open boundary is too: its box grows to cover it.
@@ -131,7 +148,9 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   }
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
-  add_carve_plane({{0, 0, 1}, -out.box.lo.z}, out.box, mesh.label_index("GroundSurface"));
+  BBox ground_box = out.box;
+  ground_box.lo.z = ground_z;
+  add_carve_plane({{0, 0, 1}, -ground_z}, ground_box, mesh.label_index("GroundSurface"));
   out.labels = mesh.semantic_labels;
 
   // Oracles and carving.
@@ -143,7 +162,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   InsideOracle oracle(osoup, p.oracle_rays, p.seed);
   oracle.set_merge_distance(out.dist);
   oracle.set_enclosure(p.fill_enclosed);
-  const VerticalOracle vertical(osoup, cover_triangles(osoup, omesh), out.dist, out.box.lo.z);
+  const VerticalOracle vertical(osoup, cover_triangles(osoup, omesh), out.dist, ground_z);
 
   CarveParams cp;
   cp.cell_size = out.cell_size;

@@ -6,6 +6,7 @@
 // unless it is below `min_component_fraction`, and drops are reported) -> fidelity (Hausdorff).
 #pragma once
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,6 +61,7 @@ struct Preprocessed {
   bool closed = false, manifold = false;
   // Open input (docs/algorithm.md §6.4): boundary length not covered by other boundary edges.
   bool open_input = false;
+  bool ground_from_terrain = false;  // the ground level came from terrain_z (roofs-only model)
   double open_boundary_length = 0;
   size_t boundary_wall_planes = 0;
   VolumeCheck volume_check;
@@ -75,6 +77,10 @@ struct Preprocessed {
 
 // Throws std::runtime_error with a clear reason when no cell can be built (empty or degenerate
 // input, nothing inside).
-Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline);
+// `terrain_z` (input coordinates, NaN = unknown): the terrain height of the building's site, e.g.
+// from a file attribute; used only as the ground level of a model without ground and walls
+// (docs/algorithm.md §6.4).
+Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline,
+                        double terrain_z = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace mc

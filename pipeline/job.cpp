@@ -17,6 +17,7 @@
 #include "pipeline/massing.hpp"
 #include "pipeline/measures.hpp"
 #include "pipeline/part_objects.hpp"
+#include "pipeline/terrain.hpp"
 
 namespace mc::pipeline {
 
@@ -248,7 +249,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   auto t = Clock::now();
   Preprocessed pre;
   try {
-    pre = preprocess(in.mesh, p.pre, deadline);
+    pre = preprocess(in.mesh, p.pre, deadline, terrain_height(out.feature));  // pipeline/terrain.hpp
   } catch (const std::exception& e) {
     // Carving cut short by the deadline finds no inside cell: the deadline is the reason.
     if (Clock::now() >= deadline)

@@ -94,6 +94,31 @@ TEST(OpenModels, GableRoofOnlyIsTheRoofPrismOverTheLowestHeight) {
   EXPECT_NEAR(only_volume(cells_of(source("datasets/open_models/gable_roof_only.closed.city.json"))), 455.0, 4.55);
 }
 
+// With the terrain height a file gives (3D BAG h_maaiveld, Rotterdam TerrainHeight; here 0), a
+// model of roofs only stands on the terrain: the whole house, as its closed reference.
+TEST(OpenModels, RoofsOnlyStandOnTheTerrainHeightWhenTheFileGivesIt) {
+  for (const auto& [name, reference] : {std::pair{"gable_roof_only", 455.0}, std::pair{"l_shape_roof_only", 498.0}}) {
+    SCOPED_TRACE(name);
+    io::CityJsonReader r(source(std::string("datasets/open_models/") + name + ".city.json"));
+    io::Feature f;
+    ASSERT_TRUE(r.next(f));
+    const io::BuildingInput b = io::extract_building(f, r.header());
+    const Preprocessed pre = preprocess(b.mesh, PreprocessParams{}, Clock::time_point::max(), 0.0);
+    double v = 0;
+    for (const auto& c : pre.components) v += c.volume;
+    EXPECT_TRUE(pre.ground_from_terrain);
+    EXPECT_NEAR(v, reference, 0.01 * reference);
+    EXPECT_FALSE(pre.volume_check.flagged);
+    // The pipeline reads it from the attributes.
+    f.objects[f.id]["attributes"]["h_maaiveld"] = 0.0;
+    Params p;
+    p.dec.levels = {0.1};
+    const pipeline::BuildingOutcome o = pipeline::run_building(f, r.header(), p, RunConfig{});
+    EXPECT_EQ(o.status, "ok") << o.reason;
+    EXPECT_NEAR(o.volume_check.cell, reference, 0.01 * reference);
+  }
+}
+
 // The L: main block 10 x 6 m, eaves 6 m, ridge 9 m; the flat annex roof at 3 m is the lowest
 // height: 10 x 6 x 3 + 10 x 6 x 3 / 2 = 270 m³ (the annex has no height above it).
 TEST(OpenModels, LShapeRoofOnlyStandsOnItsLowestRoof) {
