@@ -54,6 +54,7 @@ std::vector<Field> fields_of(Params& p) {
       {"massing", "side_angle_deg", &p.massing.side_angle_deg},
       {"massing", "wing_min_share", &p.massing.wing_min_share},
       {"massing", "rooftop_max_share", &p.massing.rooftop_max_share},
+      {"massing", "roof_max_fill", &p.massing.roof_max_fill},
       {"massing", "podium_max_roof_share", &p.massing.podium_max_roof_share},
       {"massing", "tower_min_slenderness", &p.massing.tower_min_slenderness},
       {"massing", "tower_min_height_ratio", &p.massing.tower_min_height_ratio},

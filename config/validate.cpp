@@ -110,6 +110,8 @@ void validate_massing(const MassingParams& m) {
     throw ConfigError("massing.side_angle_deg", "must leave stacked_angle_deg + side_angle_deg <= 90");
   at_least("massing.wing_min_share", m.wing_min_share, 0);
   at_least("massing.rooftop_max_share", m.rooftop_max_share, 0);
+  if (!std::isfinite(m.roof_max_fill) || !(m.roof_max_fill >= 0 && m.roof_max_fill <= 1))
+    throw ConfigError("massing.roof_max_fill", "must be in [0, 1]");
   at_least("massing.podium_max_roof_share", m.podium_max_roof_share, 0);
   at_least("massing.tower_min_slenderness", m.tower_min_slenderness, 0);
   at_least("massing.tower_min_height_ratio", m.tower_min_height_ratio, 0);

@@ -99,6 +99,7 @@ struct MassingParams {
   double side_angle_deg = 10;          // a shared face within this of vertical: side contact (else inclined)
   double wing_min_share = 0.2;         // grounded part >= this x the main part's volume: wing (else annex)
   double rooftop_max_share = 0.1;      // raised part <= this x its support's volume: rooftop (else setback)
+  double roof_max_fill = 0.6;          // raised part filling <= this of its footprint x height, resting flat: roof
   double podium_max_roof_share = 0.5;  // a tower's contact covers at most this share of the podium's footprint
   double tower_min_slenderness = 1.0;  // a tower's height >= this x its footprint's width
   double tower_min_height_ratio = 1.0; // a tower's height >= this x the podium's height

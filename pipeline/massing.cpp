@@ -1,5 +1,6 @@
 #include "pipeline/massing.hpp"
 
+#include <cpl_error.h>
 #include <ogr_geometry.h>
 
 #include <algorithm>
@@ -126,6 +127,12 @@ void collect(const OGRGeometry* g, MultiPolygon2& out) {
 
 // Exact union of polygons (GEOS through OGR); empty on failure.
 MultiPolygon2 union_of(const std::vector<Polygon2>& polys, bool& ok) {
+  // Invalid footprints are expected (faces projected edge-on) and repaired below: GEOS's notices
+  // about them would only be noise on the user's stderr. The handler stack is per thread.
+  struct QuietGdal {
+    QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
+    ~QuietGdal() { CPLPopErrorHandler(); }
+  } quiet;
   OGRMultiPolygon mp;
   for (const auto& p : polys) {
     OGRPolygon g = to_ogr(p);
@@ -261,7 +268,19 @@ void assign_roles(LevelMassing& L, const MassingParams& p) {
   // 3./4. the other grounded parts: wing when substantial, else annex.
   for (size_t i = 0; i < n; ++i)
     if (P[i].grounded && P[i].role.empty()) P[i].role = P[i].volume >= p.wing_min_share * reference ? "wing" : "annex";
-  // 5./6. raised parts: rooftop when small beside what carries them, else setback.
+  // 5. roof: a raised part that is a pitched-roof wedge, sawtooth or slab cut off the storeys it
+  //    rests on: it fills at most roof_max_fill of its footprint x height and its largest contact
+  //    below is stacked and covers at least 0.8 of its footprint. Not a stepped-back storey (a
+  //    setback) nor a unit on the roof (docs/massing.md: judged on rendered 3D BAG buildings).
+  for (size_t i = 0; i < n; ++i) {
+    if (!P[i].role.empty() || !(P[i].footprint_area > 0) || !(height(i) > 0)) continue;
+    const Contact* below = nullptr;
+    for (const Contact& c : P[i].contacts)
+      if (c.above == 1 && (!below || c.area > below->area)) below = &c;
+    if (!below || below->kind != "stacked" || below->area < 0.8 * P[i].footprint_area) continue;
+    if (P[i].volume <= p.roof_max_fill * P[i].footprint_area * height(i)) P[i].role = "roof";
+  }
+  // 6./7. other raised parts: rooftop when small beside what carries them, else setback.
   for (size_t i = 0; i < n; ++i) {
     if (!P[i].role.empty()) continue;
     // Support: the neighbour it rests on with the largest shared area (stacked or inclined
@@ -406,7 +425,7 @@ void finish_massing(BuildingMassing& m, const MassingParams& p) {
   for (size_t i : order)
     for (const Contact& c : L.parts[i].contacts)
       if (c.kind == "stacked" && c.above == 1 && L.parts[c.other].z_min < L.parts[i].z_min)
-        chain[i] = std::max(chain[i], chain[c.other] + 1);
+        chain[i] = std::max(chain[i], chain[c.other] + (L.parts[i].role == "roof" ? 0 : 1));  // a roof is no tier
   for (int c : chain) f.tiers = std::max(f.tiers, c);
   // Graph: undirected edges, components, independent cycles.
   std::vector<size_t> parent(n);

@@ -33,7 +33,7 @@ struct PartMassing {
   double width = 0;           // smallest caliper width of the footprint's convex hull
   double volume = 0, hull_volume = 0, convexity = 0;
   bool grounded = false;
-  std::string role;           // main, wing, annex, podium, tower, setback, rooftop
+  std::string role;           // main, wing, annex, podium, tower, roof, setback, rooftop
   std::vector<Contact> contacts;  // by neighbour index
   mc::io::MultiPolygon2 footprint;
 };
