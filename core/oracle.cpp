@@ -87,6 +87,44 @@ struct InsideOracle::Impl {
   }
 };
 
+namespace {
+
+// An Embree scene of the soup's triangles `used` (every triangle when null), in float
+// coordinates relative to `origin`, every hit reported to `filter`. Both oracles build theirs so.
+RTCScene triangle_scene(const TriangleSoup& soup, const std::vector<uint32_t>* used, const Vec3& origin,
+                        RTCFilterFunctionN filter) {
+  RTCDevice device = shared_device();
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         3 * sizeof(float), soup.vertices.size()));
+  for (size_t i = 0; i < soup.vertices.size(); ++i) {
+    const Vec3 p = soup.vertices[i] - origin;
+    vb[3 * i] = static_cast<float>(p.x);
+    vb[3 * i + 1] = static_cast<float>(p.y);
+    vb[3 * i + 2] = static_cast<float>(p.z);
+  }
+  const size_t n = used ? used->size() : soup.triangles.size();
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                            3 * sizeof(unsigned), n));
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) ib[3 * i + k] = soup.triangles[used ? (*used)[i] : i][k];
+  rtcSetGeometryIntersectFilterFunction(geom, filter);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene);
+  if (const RTCError err = rtcGetDeviceError(device); err != RTC_ERROR_NONE) {
+    rtcReleaseScene(scene);
+    throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
+  }
+  return scene;
+}
+
+}  // namespace
+
 InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
     : impl_(std::make_unique<Impl>()), rays_(std::max(1, rays)), seed_(seed) {
   for (const auto& t : soup.triangles)
@@ -96,30 +134,7 @@ InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
   impl_->dedup_t = 1e-5 * std::max(box_.diagonal(), 1e-9);
 
   assign_groups(soup);
-  RTCDevice device = shared_device();
-  impl_->scene = rtcNewScene(device);
-  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                         3 * sizeof(float), soup.vertices.size()));
-  for (size_t i = 0; i < soup.vertices.size(); ++i) {
-    const Vec3 p = soup.vertices[i] - impl_->origin;
-    vb[3 * i] = static_cast<float>(p.x);
-    vb[3 * i + 1] = static_cast<float>(p.y);
-    vb[3 * i + 2] = static_cast<float>(p.z);
-  }
-  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                            3 * sizeof(unsigned), soup.triangles.size()));
-  for (size_t i = 0; i < soup.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) ib[3 * i + k] = soup.triangles[i][k];
-  rtcSetGeometryIntersectFilterFunction(geom, collect_filter);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(impl_->scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(impl_->scene);
-  if (const RTCError err = rtcGetDeviceError(device); err != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
+  impl_->scene = triangle_scene(soup, nullptr, impl_->origin, collect_filter);
 }
 
 namespace {
@@ -417,30 +432,7 @@ VerticalOracle::VerticalOracle(const TriangleSoup& soup, const std::vector<uint8
   box_.lo.z = std::min(box_.lo.z, ground_z);
   impl_->origin = box_.center();
   impl_->dedup_t = std::max(merge_dist, 1e-5 * std::max(box_.diagonal(), 1e-9));
-  RTCDevice device = shared_device();
-  impl_->scene = rtcNewScene(device);
-  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                         3 * sizeof(float), soup.vertices.size()));
-  for (size_t i = 0; i < soup.vertices.size(); ++i) {
-    const Vec3 p = soup.vertices[i] - impl_->origin;
-    vb[3 * i] = static_cast<float>(p.x);
-    vb[3 * i + 1] = static_cast<float>(p.y);
-    vb[3 * i + 2] = static_cast<float>(p.z);
-  }
-  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                            3 * sizeof(unsigned), used.size()));
-  for (size_t i = 0; i < used.size(); ++i)
-    for (int k = 0; k < 3; ++k) ib[3 * i + k] = soup.triangles[used[i]][k];
-  rtcSetGeometryIntersectFilterFunction(geom, collect_filter);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(impl_->scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(impl_->scene);
-  if (const RTCError err = rtcGetDeviceError(device); err != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree scene build failed (error " + std::to_string(int(err)) + ")");
+  impl_->scene = triangle_scene(soup, &used, impl_->origin, collect_filter);
 }
 
 VerticalOracle::~VerticalOracle() = default;
