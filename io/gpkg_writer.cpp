@@ -14,6 +14,19 @@
 #include "io/temp_registry.hpp"
 
 namespace mc::io {
+
+OGRPolygon to_ogr(const Polygon2& poly) {
+  OGRPolygon p;
+  for (const Ring2& ring : poly) {
+    if (ring.size() < 3) continue;
+    OGRLinearRing r;
+    for (const auto& pt : ring) r.addPoint(pt[0], pt[1]);
+    r.addPoint(ring[0][0], ring[0][1]);
+    p.addRing(&r);
+  }
+  return p;
+}
+
 namespace {
 
 void init_gdal() {
@@ -30,14 +43,7 @@ void init_gdal() {
 OGRMultiPolygon to_ogr(const MultiPolygon2& mp) {
   OGRMultiPolygon out;
   for (const Polygon2& poly : mp) {
-    OGRPolygon p;
-    for (const Ring2& ring : poly) {
-      if (ring.size() < 3) continue;
-      OGRLinearRing r;
-      for (const auto& pt : ring) r.addPoint(pt[0], pt[1]);
-      r.addPoint(ring[0][0], ring[0][1]);
-      p.addRing(&r);
-    }
+    OGRPolygon p = mc::io::to_ogr(poly);
     if (!p.IsEmpty()) out.addGeometry(&p);
   }
   return out;

@@ -12,12 +12,17 @@
 #include <string>
 #include <vector>
 
+#include <ogr_geometry.h>
+
 namespace mc::io {
 
 // 2D polygons in model coordinates: rings[0] the outer ring, then holes (closing point not repeated).
 using Ring2 = std::vector<std::array<double, 2>>;
 using Polygon2 = std::vector<Ring2>;
 using MultiPolygon2 = std::vector<Polygon2>;
+
+// One polygon as OGR geometry (rings closed, rings of fewer than 3 points left out).
+OGRPolygon to_ogr(const Polygon2& poly);
 
 enum class GpkgType { Text, Integer, Real };
 

@@ -89,17 +89,7 @@ double caliper_width(const Ring2& hull) {
   return std::isfinite(best) ? best : 0;
 }
 
-OGRPolygon to_ogr(const Polygon2& poly) {
-  OGRPolygon p;
-  for (const Ring2& ring : poly) {
-    if (ring.size() < 3) continue;
-    OGRLinearRing r;
-    for (const auto& pt : ring) r.addPoint(pt[0], pt[1]);
-    r.addPoint(ring[0][0], ring[0][1]);
-    p.addRing(&r);
-  }
-  return p;
-}
+using mc::io::to_ogr;
 
 Polygon2 from_ogr(const OGRPolygon& p) {
   Polygon2 out;
