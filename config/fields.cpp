@@ -36,7 +36,6 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "cvx_thresh", &d.cvx_thresh},
       {"decompose", "with_bisector", &d.with_bisector},
       {"decompose", "cut_mode", &d.cut_mode},
-      {"decompose", "same_vol_factor", &d.same_vol_factor},
       {"decompose", "max_children", &d.max_children},
       {"decompose", "max_candidates", &d.max_candidates},
       {"decompose", "first_level_candidates", &d.first_level_candidates},

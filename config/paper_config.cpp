@@ -30,7 +30,6 @@ const std::map<std::string, std::string> kPaperToOurs = {
     {"sigma", "decompose.sigma"},
     {"min_cut_factor", "decompose.levels"},
     {"max_children", "decompose.max_children"},
-    {"same_vol_factor", "decompose.same_vol_factor"},
     {"cut_mode", "decompose.cut_mode"},
     {"with_bisector", "decompose.with_bisector"},
 };
@@ -38,9 +37,12 @@ const std::map<std::string, std::string> kPaperToOurs = {
 const char* const kRequired[] = {"max_distance", "max_angle",      "min_region", "angle_thresh",
                                  "dist_thresh",  "cell_size",      "concave_thresh",
                                  "min_points",   "max_points",     "sigma"};
-// Read by the research code but without effect there (dead parameters, or file-name only).
+// Read by the research code but without effect there (dead parameters, or file-name only), or
+// without a counterpart here.
 // (cvx_thresh is dead in the research code too, but here it does what it was meant for.)
-const char* const kInert[] = {"extended_plane_ch", "fewer_comp"};
+const char* const kInert[] = {"extended_plane_ch", "fewer_comp",
+                               // RC's duplicate tolerance: the search finds duplicates by exact part sets
+                               "same_vol_factor"};
 // Extra objective terms of the paper's Appendix D, not implemented here.
 const char* const kTerms[] = {"max_vol", "symmetry", "central", "decentral"};
 const char* const kTermWeights[] = {"max_vol_weight", "symmetry_weight", "central_weight",
@@ -119,7 +121,6 @@ Params load_paper_config(const std::string& path, std::vector<std::string>* warn
   // The research code's defaults for its optional keys (docs/config.md).
   p.dec.levels = {0.1, 0.01, 0.001};
   p.dec.max_children = -1;
-  p.dec.same_vol_factor = 0.001;
   p.dec.cut_mode = "A";
   p.dec.with_bisector = true;
 
@@ -140,7 +141,6 @@ Params load_paper_config(const std::string& path, std::vector<std::string>* warn
     else if (key == "sigma") p.dec.sigma = r.number(key);
     else if (key == "min_cut_factor") p.dec.levels = r.numbers(key);
     else if (key == "max_children") p.dec.max_children = r.integer(key);
-    else if (key == "same_vol_factor") p.dec.same_vol_factor = r.number(key);
     else if (key == "cut_mode") p.dec.cut_mode = r.string(key);
     else if (key == "with_bisector") p.dec.with_bisector = r.boolean(key);
     else if (listed(kInert, key)) {

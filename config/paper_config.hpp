@@ -2,7 +2,7 @@
 //
 // Keys map to Params fields (min_cut_factor -> dec.levels, max_angle -> pre.max_angle_deg, ...).
 // Optional keys the file omits take the research code's defaults (min_cut_factor
-// [0.1, 0.01, 0.001], max_children -1, same_vol_factor 0.001, cut_mode A, with_bisector true),
+// [0.1, 0.01, 0.001], max_children -1, cut_mode A, with_bisector true),
 // so a paper run means what it meant there; Params fields the paper has no key for keep ours.
 // Unknown keys, missing required keys and unsupported objective terms (max_vol, symmetry,
 // central, decentral set to true) are tolerated and reported in `warnings`: these are the

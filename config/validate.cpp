@@ -90,9 +90,6 @@ void validate_dec(const DecomposeParams& d) {
   if (!(d.cvx_thresh > 0 && d.cvx_thresh <= 1)) throw ConfigError("decompose.cvx_thresh", "must be in (0, 1]");
   finite("decompose.uncut_convexity", d.uncut_convexity);
   if (!(d.uncut_convexity > 0 && d.uncut_convexity <= 1)) throw ConfigError("decompose.uncut_convexity", "must be in (0, 1]");
-  finite("decompose.same_vol_factor", d.same_vol_factor);
-  if (!(d.same_vol_factor >= 0 && d.same_vol_factor < 1))
-    throw ConfigError("decompose.same_vol_factor", "must be in [0, 1)");
   if (d.max_children == 0 || d.max_children < -1)
     throw ConfigError("decompose.max_children", "must be -1 (keep all) or >= 1");
   at_least("decompose.max_candidates", d.max_candidates, 0, " (0 = all)");

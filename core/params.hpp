@@ -65,7 +65,6 @@ struct DecomposeParams {
   double cvx_thresh = 0.995;
   bool with_bisector = true;
   std::string cut_mode = "A";    // A, H, V, HV, HI, VI
-  double same_vol_factor = 1e-5; // duplicate / sliver tolerance relative to the root volume
   int max_children = 64;         // best children kept per expansion (-1 = all, as RC)
   int max_candidates = 12;       // top-K candidate planes per part by weight (0 = all)
   // The same cap for the first level's searches (whole components; -1 = max_candidates, 0 = all).

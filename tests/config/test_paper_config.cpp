@@ -46,7 +46,6 @@ TEST(PaperConfig, Sample1) {
   EXPECT_DOUBLE_EQ(p.pre.angle_thresh_deg, 30);
   EXPECT_EQ(p.dec.levels, (std::vector<double>{0.1, 0.01, 0.001, 0.0001, 0.00001}));
   EXPECT_DOUBLE_EQ(p.dec.sigma, 2);
-  EXPECT_DOUBLE_EQ(p.dec.same_vol_factor, 1e-5);
   EXPECT_EQ(p.pre.min_points, 100);
   EXPECT_EQ(p.pre.max_points, 10000);
   EXPECT_TRUE(p.dec.with_bisector);
@@ -92,7 +91,6 @@ TEST_F(PaperFile, UnknownKeysAreWarningsAndOptionalKeysTakeTheResearchDefaults) 
   EXPECT_NE(w[1].find("symmetry"), std::string::npos);
   EXPECT_EQ(p.dec.levels, (std::vector<double>{0.1, 0.01, 0.001}));
   EXPECT_EQ(p.dec.max_children, -1);
-  EXPECT_DOUBLE_EQ(p.dec.same_vol_factor, 0.001);
   EXPECT_EQ(p.dec.cut_mode, "V");
 }
 
