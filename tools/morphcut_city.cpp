@@ -9,6 +9,8 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
 
 #include "config/config.hpp"
 #include "io/errors.hpp"
@@ -81,6 +83,10 @@ Exit codes:
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Messages go to stderr as "morphcut-city: ..." (spdlog's default logger would write to stdout).
+  auto logger = spdlog::stderr_logger_st("morphcut-city");
+  logger->set_pattern("morphcut-city: %v");
+  spdlog::set_default_logger(logger);
   // Subcommands come first; anything else is an input path (a file named "validate" can be given
   // as ./validate).
   if (argc > 1 && std::string(argv[1]) == "validate") return mc::pipeline::validate_main(argc - 1, argv + 1);
@@ -145,23 +151,23 @@ int main(int argc, char** argv) {
     opt.handle_signals = true;
     opt.crash_log = opt.output + ".crashed";
 
+    // The config's log_level decides what reaches stderr; --quiet keeps errors only.
+    spdlog::level::level_enum level = spdlog::level::from_str(cfg.run.log_level);
+    if (quiet) level = std::max(level, spdlog::level::err);
+    spdlog::set_level(level);
     const mc::pipeline::RunResult r = mc::pipeline::run_city(opt, cfg.params, cfg.run);
     if (r.interrupted) {
-      std::fprintf(stderr, "morphcut-city: interrupted (signal %d); no output written\n", r.interrupted);
+      spdlog::error("interrupted (signal {}); no output written", r.interrupted);
       return r.exit_code();
     }
-    if (!quiet) {
-      std::fprintf(stderr,
-                   "morphcut-city: %zu buildings (%zu features) in %.1f s, %.2f buildings/s, %d threads: "
-                   "%zu ok, %zu partial, %zu failed, %zu skipped -> %s\n",
-                   r.buildings, r.features, r.wall_seconds, r.wall_seconds > 0 ? r.buildings / r.wall_seconds : 0.0,
-                   r.threads, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"), r.counts.at("skipped"),
-                   opt.output.c_str());
-      if (!cache_dir.empty())
-        std::fprintf(stderr, "morphcut-city: cache %s: %zu hits, %zu misses, %zu stored\n", cache_dir.c_str(),
-                     r.cache.hits, r.cache.misses, r.cache.stored);
-      for (const auto& p : r.reader_problems) std::fprintf(stderr, "morphcut-city: input problem: %s\n", p.c_str());
-    }
+    spdlog::info("{} buildings ({} features) in {:.1f} s, {:.2f} buildings/s, {} threads: {} ok, {} partial, {} failed, "
+                 "{} skipped -> {}",
+                 r.buildings, r.features, r.wall_seconds, r.wall_seconds > 0 ? r.buildings / r.wall_seconds : 0.0,
+                 r.threads, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"), r.counts.at("skipped"),
+                 opt.output);
+    if (!cache_dir.empty())
+      spdlog::info("cache {}: {} hits, {} misses, {} stored", cache_dir, r.cache.hits, r.cache.misses, r.cache.stored);
+    for (const auto& p : r.reader_problems) spdlog::warn("input problem: {}", p);
     // The HTML page, from the outputs just written (timed: it should stay a few % of the run).
     if (!no_html) {
       const std::string page = !html.empty()         ? html
@@ -172,26 +178,23 @@ int main(int argc, char** argv) {
         const mc::pipeline::HtmlReportResult h = mc::pipeline::write_html_report(
             opt.report, opt.report.empty() ? std::vector<std::string>{opt.output} : std::vector<std::string>{}, page);
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (!quiet)
-          std::fprintf(stderr,
-                       "morphcut-city: HTML page (%.2f MB, 3D for %zu of %zu buildings) in %.2f s, %.1f%% of the run's "
-                       "%.1f s -> %s\n",
-                       static_cast<double>(h.bytes) / 1e6, h.with_3d, h.buildings, s,
-                       r.wall_seconds > 0 ? 100.0 * s / r.wall_seconds : 0.0, r.wall_seconds, h.path.c_str());
+        spdlog::info("HTML page ({:.2f} MB, 3D for {} of {} buildings) in {:.2f} s, {:.1f}% of the run's {:.1f} s -> {}",
+                     static_cast<double>(h.bytes) / 1e6, h.with_3d, h.buildings, s,
+                     r.wall_seconds > 0 ? 100.0 * s / r.wall_seconds : 0.0, r.wall_seconds, h.path);
       } catch (const std::exception& e) {
         // The run's outputs are complete; a page that cannot be made does not change the exit code.
-        std::fprintf(stderr, "morphcut-city: HTML page not written: %s\n", e.what());
+        spdlog::error("HTML page not written: {}", e.what());
       }
     }
     return r.exit_code();
   } catch (const mc::ConfigError& e) {
-    std::fprintf(stderr, "morphcut-city: config: %s\n", e.what());
+    spdlog::error("config: {}", e.what());
   } catch (const mc::io::ReadError& e) {
-    std::fprintf(stderr, "morphcut-city: cannot read input: %s\n", e.what());
+    spdlog::error("cannot read input: {}", e.what());
   } catch (const mc::io::WriteError& e) {
-    std::fprintf(stderr, "morphcut-city: cannot write output: %s\n", e.what());
+    spdlog::error("cannot write output: {}", e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "morphcut-city: error: %s\n", e.what());
+    spdlog::error("error: {}", e.what());
   }
   return mc::pipeline::kExitUsage;
 }

@@ -89,6 +89,30 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
   EXPECT_TRUE(fs::is_empty(dir.path / "cwd"));
 }
 
+// log_level (config) decides what the run prints on stderr: the summary at info, nothing of a
+// clean run at warn; an error is printed at any level but off.
+TEST(Cli, LogLevelSetsWhatReachesStderr) {
+  MC_REQUIRE_CLI();
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
+  TempDir dir("cli_log_level");
+  for (const char* level : {"info", "warn", "off"})
+    std::ofstream(dir / (std::string(level) + ".yaml")) << "decompose:\n  levels: [0.1]\nlog_level: " << level << "\n";
+  auto run = [&](const std::string& level, const std::string& in) {
+    return run_command("cd " + dir.path.string() + " && " + cli_path() + " " + in + " --config " + level +
+                       ".yaml --no-html -o out.city.jsonl");
+  };
+  const ProcessResult info = run("info", input);
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("morphcut-city: 2 buildings"), std::string::npos) << info.output;
+  const ProcessResult warn = run("warn", input);
+  EXPECT_EQ(warn.exit_code, 0) << warn.output;
+  EXPECT_EQ(warn.output, "");
+  const ProcessResult missing = run("warn", "missing.city.jsonl");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("morphcut-city: cannot read input"), std::string::npos) << missing.output;
+  EXPECT_EQ(run("off", "missing.city.jsonl").output, "");
+}
+
 TEST(Cli, StdinIsReadAsCityJsonSeq) {
   MC_REQUIRE_CLI();
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
