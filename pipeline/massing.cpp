@@ -54,24 +54,6 @@ double multipolygon_area(const MultiPolygon2& m) {
   return a;
 }
 
-// Andrew's monotone chain, counter-clockwise, no collinear points.
-Ring2 hull2d(std::vector<Pt> pts) {
-  std::sort(pts.begin(), pts.end());
-  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-  if (pts.size() < 3) return pts;
-  Ring2 h(2 * pts.size());
-  size_t k = 0;
-  for (size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && cross2(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
-    h[k++] = pts[i];
-  }
-  for (size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross2(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
-    h[k++] = pts[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
 
 // Smallest distance between two parallel lines enclosing a convex polygon (over its edges).
 double caliper_width(const Ring2& hull) {
@@ -197,7 +179,7 @@ MultiPolygon2 part_footprint(const PolygonMesh& m, bool convex) {
     MultiPolygon2 u = union_of(down, ok);
     if (ok && !u.empty()) return u;
   }
-  Ring2 h = hull2d(pts);
+  Ring2 h = mc::convex_hull_2d(pts);
   if (h.size() < 3) return {};
   return {{h}};
 }
@@ -360,7 +342,7 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
     std::vector<Pt> outer;
     for (const auto& poly : pm.footprint)
       if (!poly.empty()) outer.insert(outer.end(), poly[0].begin(), poly[0].end());
-    pm.width = caliper_width(hull2d(outer));
+    pm.width = caliper_width(mc::convex_hull_2d(outer));
     // Contacts: shared faces by neighbour and kind.
     std::map<uint32_t, std::map<std::string, std::pair<double, double>>> acc;  // other -> kind -> (area, signed up-area)
     for (const Polygon& f : m.faces) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/hull.hpp"
+
 namespace mc::pipeline {
 
 namespace {
@@ -82,31 +84,16 @@ double projected_area(const PolygonMesh& m, const Polygon& p) {
 double hull_area_2d(const std::vector<Vec3>& points) {
   if (points.size() < 3) return 0;
   const Vec3 o = points[0];
-  std::vector<std::pair<double, double>> p;
+  std::vector<std::array<double, 2>> p;
   p.reserve(points.size());
-  for (const Vec3& v : points) p.emplace_back(v.x - o.x, v.y - o.y);
-  std::sort(p.begin(), p.end());
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return 0;
-  auto turn = [](auto& a, auto& b, auto& c) {
-    return (b.first - a.first) * (c.second - a.second) - (b.second - a.second) * (c.first - a.first);
-  };
-  std::vector<std::pair<double, double>> h(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
+  for (const Vec3& v : points) p.push_back({v.x - o.x, v.y - o.y});
+  const auto h = convex_hull_2d(std::move(p));
+  if (h.size() < 3) return 0;
   double s = 0;
   for (size_t i = 0; i < h.size(); ++i) {
     const auto& a = h[i];
     const auto& b = h[(i + 1) % h.size()];
-    s += a.first * b.second - b.first * a.second;
+    s += a[0] * b[1] - b[0] * a[1];
   }
   return std::abs(s) / 2;
 }
