@@ -123,6 +123,28 @@ RTCScene triangle_scene(const TriangleSoup& soup, const std::vector<uint32_t>* u
   return scene;
 }
 
+// The triangles a ray from `from` (scene coordinates) along `dir` crosses, each once (spatial
+// splits can report one primitive twice), as (t, primitive) ordered by primitive. The buffer is
+// the thread's own and is reused by its next call.
+Hits& ray_hits(RTCScene scene, const Vec3& from, const Vec3& dir) {
+  thread_local Hits hits;
+  hits.clear();
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.hits = &hits;
+  RTCRayHit rh;
+  rh.ray = make_ray(from, dir);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene, &ctx.base, &rh);
+  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second < b.second : a.first < b.first;
+  });
+  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
+             hits.end());
+  return hits;
+}
+
 }  // namespace
 
 InsideOracle::InsideOracle(const TriangleSoup& soup, int rays, uint64_t seed)
@@ -301,24 +323,9 @@ InsideOracle::~InsideOracle() = default;
 
 int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
   if (!impl_->scene) return 0;
-  thread_local Hits hits;
-  hits.clear();
-  CollectContext ctx;
-  rtcInitIntersectContext(&ctx.base);
-  ctx.hits = &hits;
-  RTCRayHit rh;
-  rh.ray = make_ray(p - impl_->origin, dir);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &ctx.base, &rh);
+  // Hits at nearly equal t are merged below (shared edges and vertices, coincident triangles).
+  Hits& hits = ray_hits(impl_->scene, p - impl_->origin, dir);
   if (hits.empty()) return 0;
-  // Spatial splits can report one primitive twice: drop repeats of a primitive first, then
-  // merge hits at nearly equal t (shared edges and vertices, coincident duplicate triangles).
-  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
-    return a.second != b.second ? a.second < b.second : a.first < b.first;
-  });
-  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
-             hits.end());
   const double scale = 1.0 / norm(dir);  // t is in units of |dir|
   if (impl_->groups == 1) {
     std::sort(hits.begin(), hits.end());
@@ -440,23 +447,9 @@ VerticalOracle::~VerticalOracle() = default;
 std::vector<double> VerticalOracle::crossings(double x, double y) const {
   std::vector<double> out;
   if (!impl_->scene) return out;
-  thread_local Hits hits;
-  hits.clear();
-  CollectContext ctx;
-  rtcInitIntersectContext(&ctx.base);
-  ctx.hits = &hits;
-  RTCRayHit rh;
   const double z0 = box_.lo.z - 1.0;  // from below everything, upwards
-  rh.ray = make_ray(Vec3{x, y, z0} - impl_->origin, {0, 0, 1});
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &ctx.base, &rh);
+  Hits& hits = ray_hits(impl_->scene, Vec3{x, y, z0} - impl_->origin, {0, 0, 1});
   if (hits.empty()) return out;
-  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
-    return a.second != b.second ? a.second < b.second : a.first < b.first;
-  });
-  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
-             hits.end());
   std::sort(hits.begin(), hits.end());
   double last = -std::numeric_limits<double>::infinity();
   for (const auto& h : hits) {
