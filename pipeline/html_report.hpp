@@ -1,4 +1,4 @@
-// The run as one self-contained, offline HTML page (issue 22): run summary, plots, a plan view of
+// The run as one self-contained, offline HTML page: run summary, plots, a plan view of
 // the footprints and an interactive three.js view of any embedded building's parts per level,
 // with the input as a ghost. Data, page script and three.js are inline; the page makes no request
 // (its Content-Security-Policy forbids any).

@@ -119,7 +119,7 @@ void set_status_attributes(BuildingOutcome& out) {
                                   {"ratio", rounded(out.volume_check.ratio, 1e-4)},
                                   {"method", out.volume_check.method},
                                   {"oracle", out.volume_check.oracle}};
-  add_building_attributes(a, out.massing);  // issue 21: massing features
+  add_building_attributes(a, out.massing);  // massing features (docs/massing.md)
 }
 
 // One level's parts encoded and checked, not yet in the feature.
@@ -352,7 +352,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     out.size.parts_repaired += e.repaired_parts;
     out.size.split_faces += e.split_faces;
     lv.grid_repair = e.grid_repair;
-    {  // massing analytics (issue 21, pipeline/massing.hpp): roles and contacts as part attributes
+    {  // massing analytics (pipeline/massing.hpp, docs/massing.md): roles and contacts as part attributes
       const auto tm = Clock::now();
       const bool own = e.grid_repair == "non-conforming";  // those meshes carry no neighbours
       std::vector<PolygonMesh> own_meshes;

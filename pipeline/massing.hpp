@@ -1,4 +1,4 @@
-// Massing analytics (issue 21, docs/massing.md): per level, each part's vertical extent,
+// Massing analytics (docs/massing.md): per level, each part's vertical extent,
 // footprint, hull volume, ground contact and contacts with its neighbours (shared area and kind);
 // a role per part by ordered rules; building features at the analysis level (massing.level).
 // Pure functions of a level's part meshes (input coordinates), so deterministic.

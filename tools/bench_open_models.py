@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Open-model benchmark (issue 19): morphcut-city on open variants of the public files and on their
+"""Open-model benchmark (docs/design.md, open models): morphcut-city on open variants of the public files and on their
 closed originals, compared building by building. Python 3 standard library only.
 
     tools/bench_open_models.py [--bin PATH] [--work DIR] [--threads N] [--variants a,b,c,d,e]

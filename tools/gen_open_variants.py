@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Open-model test data for issue 19: seeded variants of real CityJSON files with surfaces removed,
+"""Open-model test data: seeded variants of real CityJSON files with surfaces removed,
 and small synthetic open models with their closed references. Python 3 standard library only.
 
     python3 tools/gen_open_variants.py INPUT.city.json OUTDIR [--seed N] [--variants a,b,c,d,e]

@@ -2,7 +2,7 @@
 # Runs morphcut-city on every public real CityJSON file with buildings in
 # ../shared/datasets/cityjson (from its MANIFEST.tsv; the synthetic conformance snippets and the
 # schemas are left out), validates each output with `morphcut-city validate`, and prints per file
-# and in total the share of output parts that pass (issue #6: target 100%).
+# and in total the share of output parts that pass.
 #
 # usage: tools/validate_tiles.sh [--bin PATH] [--threads N] [--config YAML] [--work DIR] [--only SUBSTRING] [--val3dity]
 # Outputs, the validation JSON reports and failures.txt (every error of an invalid object) are

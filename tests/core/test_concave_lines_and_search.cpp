@@ -1,6 +1,6 @@
 // Concave lines (docs/algorithm.md §9.3–§9.5), candidate cutting planes (§10) and the
-// best-first search (§12) on small prisms whose answers are known in closed form (issue 20,
-// item 5): core/part.cpp (analyze_part) and core/search.cpp (search) tested directly, and the
+// best-first search (§12) on small prisms whose answers are known in closed form:
+// core/part.cpp (analyze_part) and core/search.cpp (search) tested directly, and the
 // LoD driver (core/decompose.cpp) at one coarse level.
 //
 // Every shape is an extruded footprint, 6 high unless said otherwise, preprocessed at cell size

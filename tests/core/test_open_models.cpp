@@ -1,4 +1,4 @@
-// Open models (issue 19, docs/algorithm.md §6.4, §6.5): the vertical roof-over-ground vote on
+// Open models (docs/algorithm.md §6.4, §6.5): the vertical roof-over-ground vote on
 // synthetic open models against their closed references (datasets/open_models), the volume
 // check, and a handful of 3D BAG buildings of the open variants (party walls removed, ground
 // removed; tools/gen_open_variants.py --seed 19) against the closed original.
