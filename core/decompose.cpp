@@ -197,9 +197,14 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<Work>& parts, double v_
     // long: merged into the neighbour it shares most area with, it can take a convex box's
     // convexity far down (docs/design.md, "Tiny parts merge where the hull grows least").
     auto hull_of = [&](const std::vector<uint32_t>& cells) {
-      std::vector<Vec3> pts;
+      std::vector<uint32_t> ids;  // each vertex once (cells share them)
       for (uint32_t c : cells)
-        for (uint32_t v : cx.cell_vertices(c)) pts.push_back(cx.point(v));
+        for (uint32_t v : cx.cell_vertices(c)) ids.push_back(v);
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      std::vector<Vec3> pts;
+      pts.reserve(ids.size());
+      for (uint32_t v : ids) pts.push_back(cx.point(v));
       return convex_hull(pts).volume;
     };
     const double tol = 1e-9 * std::max(1.0, v_min);
@@ -248,6 +253,14 @@ struct LevelSpace {
 // Analysis only: generated candidate planes are not registered.
 const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
 
+// Every part of a level analysed, in parallel (the analysis only reads the complex); in order.
+std::vector<PartInfo> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<Work>& work,
+                                    const AnalysisContext& ctx) {
+  std::vector<PartInfo> info(work.size());
+  tbb::parallel_for(size_t(0), work.size(), [&](size_t i) { info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes); });
+  return info;
+}
+
 // Change of a level's cost (docs/algorithm.md §11.1 with the whole-building normalisers of §11.3) when
 // its part count, ΣΔ and Σ E_all change by dn, d_delta and d_e.
 double level_cost_change(const DecomposeParams& p, double n_max, double delta0, double dn, double d_delta, double d_e) {
@@ -273,9 +286,8 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
   auto gain = [&](const PartInfo& a, const PartInfo& b, const PartInfo& u) {
     return level_cost_change(p, n_max, delta0, -1.0, u.delta - a.delta - b.delta, u.e_all - a.e_all - b.e_all);
   };
-  std::vector<PartInfo> info;
+  std::vector<PartInfo> info = analyze_parts(space, ls, work, ctx);
   std::vector<bool> alive(work.size(), true);
-  for (const Work& w : work) info.push_back(analyze_part(space, ls.bits(w), ctx, kNoNewPlanes));
   std::vector<uint32_t> owner(space.cells.size());
   auto neighbours = [&](uint32_t i) {
     return neighbour_owners(cx, work[i].cells, i, [&](uint32_t c) {
@@ -300,6 +312,26 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     return cache.emplace(key, std::move(r)).first->second;
   };
   for (size_t guard = 0; guard < work.size(); ++guard) {
+    // The unions not yet evaluated, analysed in parallel (evaluate() is then a cache hit).
+    std::vector<std::pair<uint32_t, uint32_t>> todo;
+    for (uint32_t a = 0; a < work.size(); ++a) {
+      if (!alive[a]) continue;
+      for (uint32_t b : neighbours(a))
+        if (b > a && alive[b] && work[a].component == work[b].component && !cache.count({a, b})) todo.emplace_back(a, b);
+    }
+    std::vector<PartInfo> unions(todo.size());
+    tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
+      Bits u = info[todo[i].first].bits;
+      for (size_t w = 0; w < u.size(); ++w) u[w] |= info[todo[i].second].bits[w];
+      unions[i] = analyze_part(space, std::move(u), ctx, kNoNewPlanes);
+    });
+    for (size_t i = 0; i < todo.size(); ++i) {
+      const auto [a, b] = todo[i];
+      std::optional<std::pair<double, PartInfo>> r;
+      const double g = gain(info[a], info[b], unions[i]);
+      if (unions[i].e_sig == 0 && unions[i].pinch_edges == 0 && g < -1e-9) r.emplace(g, std::move(unions[i]));
+      cache.emplace(std::make_pair(a, b), std::move(r));
+    }
     double best = 0;
     std::pair<uint32_t, uint32_t> pick{0, 0};
     for (uint32_t a = 0; a < work.size(); ++a) {
@@ -560,10 +592,10 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
   const LevelSpace ls(cx, work);
   std::vector<PartInfo> info;
   double weighted = 0, volume = 0;
-  for (const Work& w : work) {
-    info.push_back(analyze_part(ls.space, ls.bits(w), ctx, kNoNewPlanes));
-    weighted += weighted_convexity(info.back());
-    volume += info.back().volume;
+  info = analyze_parts(ls.space, ls, work, ctx);
+  for (const PartInfo& pi : info) {
+    weighted += weighted_convexity(pi);
+    volume += pi.volume;
   }
   std::vector<std::tuple<double, uint32_t, double>> costly;  // (cost change, group, Σ V·convexity lost)
   for (const auto& [g, js] : parts_of) {
@@ -629,8 +661,9 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
   out.parts.clear();
   out.min_convexity = 1;
   out.mean_convexity = 0;
+  const std::vector<PartInfo> infos = analyze_parts(space, ls, work, ctx);
   for (uint32_t i = 0; i < work.size(); ++i) {
-    const PartInfo info = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes);
+    const PartInfo& info = infos[i];
     PartResult r;
     r.cells = work[i].cells;
     r.component = work[i].component;

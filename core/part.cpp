@@ -287,7 +287,7 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
 
   // Volume, boundary incidences and hull points.
   std::unordered_map<uint64_t, std::vector<Incidence>> by_edge;
-  std::vector<uint32_t> hull_vertices;
+  std::vector<uint64_t> vertex_planes;  // (vertex << 32 | plane) of every boundary facet corner
   for (uint32_t i = 0; i < s.cells.size(); ++i) {
     if (!test_bit(info.bits, i)) continue;
     ++info.cell_count;
@@ -298,15 +298,23 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
       for (size_t k = 0; k < loop.size(); ++k) {
         const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
         by_edge[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)].push_back({side.facet, s.cells[i], a, b});
-        hull_vertices.push_back(a);
+        vertex_planes.push_back((uint64_t(a) << 32) | cx.facet(side.facet).plane);
       }
     }
   }
-  std::sort(hull_vertices.begin(), hull_vertices.end());
-  hull_vertices.erase(std::unique(hull_vertices.begin(), hull_vertices.end()), hull_vertices.end());
+  // Hull points: the boundary vertices where three or more planes meet. A vertex whose boundary
+  // facets lie on one plane is inside a flat face, and one on two planes is inside their common
+  // edge line; neither is an extreme point, so the hull is the same without them
+  // (docs/algorithm.md §9.2), and the hull is most of the analysis' time.
+  std::sort(vertex_planes.begin(), vertex_planes.end());
+  vertex_planes.erase(std::unique(vertex_planes.begin(), vertex_planes.end()), vertex_planes.end());
   std::vector<Vec3> pts;
-  pts.reserve(hull_vertices.size());
-  for (uint32_t v : hull_vertices) pts.push_back(cx.point(v));
+  for (size_t i = 0; i < vertex_planes.size();) {
+    size_t j = i;
+    while (j < vertex_planes.size() && (vertex_planes[j] >> 32) == (vertex_planes[i] >> 32)) ++j;
+    if (j - i >= 3) pts.push_back(cx.point(static_cast<uint32_t>(vertex_planes[i] >> 32)));
+    i = j;
+  }
   const Hull hull = convex_hull(pts);
   info.hull_volume = hull.volume;
   info.delta = std::max(0.0, info.hull_volume - info.volume);

@@ -105,6 +105,17 @@ class Search {
            obj_.sigma * (p.e_all / (obj_.k * obj_.n_max) + p.delta / obj_.delta0);
   }
 
+  static constexpr uint32_t kNew = UINT32_MAX;
+
+  // The arena id of a part with these cells, or kNew.
+  uint32_t find(const Bits& bits) const {
+    const auto it = by_hash_.find(hash_bits(bits));
+    if (it != by_hash_.end())
+      for (uint32_t id : it->second)
+        if (arena_[id].bits == bits) return id;
+    return kNew;
+  }
+
   uint32_t intern(PartInfo info) {
     auto& bucket = by_hash_[info.hash];
     for (uint32_t id : bucket)
@@ -145,7 +156,13 @@ class Search {
       for (uint32_t c : arena_[p].candidates)
         if (!splits_.count({p, c})) todo.emplace_back(p, c);
     if (todo.empty()) return;
-    std::vector<std::vector<PartInfo>> pieces(todo.size());
+    // Per split: each piece is either a part the arena already holds (the same cells reached by
+    // cuts in another order; analysed once) or a newly analysed one.
+    struct Piece {
+      uint32_t known = kNew;
+      PartInfo info;
+    };
+    std::vector<std::vector<Piece>> pieces(todo.size());
     const PlaneResolver lookup = [this](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
       for (uint32_t id : in_.pool)
         if (same_plane_in_box(g, in_.space->cx->planes()[id], in_.ctx.angle_rad, in_.ctx.dist, in_.ctx.box)) return id;
@@ -165,7 +182,13 @@ class Search {
       }
       if (!any_a || !any_b) return;  // the plane does not cut this part
       for (const Bits* side : {&a, &b})
-        for (Bits& comp : components(*in_.space, *side)) pieces[i].push_back(analyze_part(*in_.space, std::move(comp), in_.ctx, lookup));
+        for (Bits& comp : components(*in_.space, *side)) {
+          // The arena is read-only while the splits are computed (interning happens after).
+          if (const uint32_t id = find(comp); id != kNew)
+            pieces[i].push_back({id, {}});
+          else
+            pieces[i].push_back({kNew, analyze_part(*in_.space, std::move(comp), in_.ctx, lookup)});
+        }
     };
     tbb::parallel_for(size_t(0), todo.size(), body);
     for (size_t i = 0; i < todo.size(); ++i) {
@@ -173,9 +196,9 @@ class Search {
       // A cut that leaves a piece touching itself along a new edge gives no valid solid: reject
       // cuts that add pinch edges (a root that already has some may still be cut).
       int pinches = 0;
-      for (const PartInfo& info : pieces[i]) pinches += info.pinch_edges;
+      for (const Piece& piece : pieces[i]) pinches += (piece.known == kNew ? piece.info : arena_[piece.known]).pinch_edges;
       if (pinches > arena_[todo[i].first].pinch_edges) pieces[i].clear();
-      for (PartInfo& info : pieces[i]) ids.push_back(intern(std::move(info)));
+      for (Piece& piece : pieces[i]) ids.push_back(piece.known == kNew ? intern(std::move(piece.info)) : piece.known);
       splits_[todo[i]] = std::move(ids);
     }
   }
