@@ -21,6 +21,7 @@ std::vector<Field> fields_of(Params& p) {
       {"preprocess", "min_gap", &a.min_gap},
       {"preprocess", "snap_corners", &a.snap_corners},
       {"preprocess", "oracle_rays", &a.oracle_rays},
+      {"preprocess", "fast_path", &a.fast_path},
       {"preprocess", "fill_enclosed", &a.fill_enclosed},
       {"preprocess", "oracle", &a.oracle},
       {"preprocess", "volume_check", &a.volume_check},

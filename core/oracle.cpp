@@ -321,7 +321,10 @@ void InsideOracle::set_merge_distance(double t) {
 
 InsideOracle::~InsideOracle() = default;
 
-int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
+int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const { return count_crossings(p, dir, nullptr); }
+
+int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir, bool* clean) const {
+  if (clean) *clean = impl_->groups == 1;
   if (!impl_->scene) return 0;
   // Hits at nearly equal t are merged below (shared edges and vertices, coincident triangles).
   Hits& hits = ray_hits(impl_->scene, p - impl_->origin, dir);
@@ -332,7 +335,10 @@ int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
     int count = 1;
     float last = hits[0].first;
     for (size_t i = 1; i < hits.size(); ++i) {
-      if ((hits[i].first - last) / scale > impl_->dedup_t) ++count;
+      const double gap = (hits[i].first - last) / scale;
+      if (gap > impl_->dedup_t) ++count;
+      // A gap near the merge distance: the ray went through an edge or vertex, or a thin slab.
+      if (clean && gap <= 2 * impl_->dedup_t) *clean = false;
       last = hits[i].first;
     }
     return count;
@@ -360,6 +366,17 @@ int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
   return any_odd ? 1 : 2;
 }
 
+Vec3 InsideOracle::ray_direction(uint64_t base, int k) const {
+  const uint64_t r1 = splitmix64(base + 2 * static_cast<uint64_t>(k));
+  const uint64_t r2 = splitmix64(base + 2 * static_cast<uint64_t>(k) + 1);
+  // Azimuths stratified over the circle; z = sin(elevation) uniform in [0.5, 1], i.e.
+  // elevation 30°..90°, uniform over that spherical cap.
+  const double phi = 2 * M_PI * (k + unit_double(r1)) / rays_;
+  const double z = 0.5 + 0.5 * unit_double(r2);
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return Vec3{r * std::cos(phi), r * std::sin(phi), z};
+}
+
 bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
   if (!box_.valid() || p.x < box_.lo.x || p.y < box_.lo.y || p.z < box_.lo.z || p.x > box_.hi.x ||
       p.y > box_.hi.y || p.z > box_.hi.z)
@@ -367,14 +384,17 @@ bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
   const uint64_t base = splitmix64(seed_ ^ splitmix64(point_id));
   int votes = 0;
   for (int k = 0; k < rays_; ++k) {
-    const uint64_t r1 = splitmix64(base + 2 * static_cast<uint64_t>(k));
-    const uint64_t r2 = splitmix64(base + 2 * static_cast<uint64_t>(k) + 1);
-    // Azimuths stratified over the circle; z = sin(elevation) uniform in [0.5, 1], i.e.
-    // elevation 30°..90°, uniform over that spherical cap.
-    const double phi = 2 * M_PI * (k + unit_double(r1)) / rays_;
-    const double z = 0.5 + 0.5 * unit_double(r2);
-    const double r = std::sqrt(std::max(0.0, 1 - z * z));
-    votes += count_crossings(p, Vec3{r * std::cos(phi), r * std::sin(phi), z}) & 1;
+    if (k == 0 && valid_solid_ && rays_ >= 3) {
+      // A valid solid: two clean rays that agree decide the point (docs/algorithm.md §6.6).
+      bool clean0 = false, clean1 = false;
+      const int n0 = count_crossings(p, ray_direction(base, 0), &clean0) & 1;
+      const int n1 = count_crossings(p, ray_direction(base, 1), &clean1) & 1;
+      if (clean0 && clean1 && n0 == n1) return n0 != 0;
+      votes += n0 + n1;
+      ++k;
+    } else {
+      votes += count_crossings(p, ray_direction(base, k)) & 1;
+    }
     // Stop once the majority is decided: the same answer as all rays, since ray k's direction
     // depends only on (seed, point, k). Most points are unambiguous: 3 rays instead of 5.
     if (2 * votes > rays_) return true;

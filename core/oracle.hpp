@@ -32,6 +32,9 @@ class InsideOracle {
   // With several closed shells the count is reduced to its parity over the union (1 = inside some
   // shell, 2 = none).
   int count_crossings(const Vec3& p, const Vec3& dir) const;
+  // The same; `clean` tells whether no two crossings came within twice the merge distance of
+  // each other (no edge, vertex or second surface near the ray) and the soup is one parity group.
+  int count_crossings(const Vec3& p, const Vec3& dir, bool* clean) const;
   const BBox& bbox() const { return box_; }
   // Hits closer than `t` along a ray count as one crossing. Preprocessing sets it to δ: surfaces
   // within the model tolerance are one surface (duplicate or doubled walls), as in plane merging.
@@ -45,18 +48,25 @@ class InsideOracle {
   // without such edges it stays off (parity is right there, and the extra inside points would
   // only perturb the carving).
   void set_enclosure(bool on) { enclosure_ = on && nonmanifold_edges_ > 0; }
+  // The soup is a valid solid (closed, 2-manifold, outward, not self-intersecting, checked with
+  // exact predicates): a ray is wrong only where it passes within the merge distance of an edge
+  // or of a second surface, so two clean rays that agree decide a point, and the vote runs only
+  // for the others (docs/algorithm.md §6.6).
+  void set_valid_solid(bool on) { valid_solid_ = on; }
   size_t nonmanifold_edges() const { return nonmanifold_edges_; }
   // True when no ray of the fan from p escapes (exposed for tests and diagnostics).
   bool enclosed(const Vec3& p, uint64_t point_id) const;
 
  private:
   void assign_groups(const TriangleSoup& soup);
+  Vec3 ray_direction(uint64_t base, int k) const;  // ray k of the point with seed `base`
   struct Impl;
   std::unique_ptr<Impl> impl_;
   BBox box_;
   int rays_;
   uint64_t seed_;
   bool enclosure_ = false;
+  bool valid_solid_ = false;
   size_t nonmanifold_edges_ = 0;
 };
 

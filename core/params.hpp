@@ -32,6 +32,9 @@ struct PreprocessParams {
   // (core/corner_snap.hpp). false = the paper's behaviour (planes as fitted).
   bool snap_corners = true;
   int oracle_rays = 5;           // rays per point for the inside/outside majority vote
+  // An input that is a valid solid (closed, 2-manifold, outward, not self-intersecting; exact
+  // predicates) is labelled by one clean ray per point instead of the vote (docs/algorithm.md §6.6).
+  bool fast_path = true;
   // Points the parity vote calls outside but that no ray (horizon to zenith) escapes from are
   // inside: storeys whose floors are modelled as sheets inside the solid (core/oracle.hpp).
   bool fill_enclosed = true;

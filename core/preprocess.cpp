@@ -11,6 +11,7 @@
 #include "core/open_input.hpp"
 #include "core/oracle.hpp"
 #include "core/segmentation.hpp"
+#include "core/solid_validation.hpp"
 #include "core/soup.hpp"
 #include "core/surface.hpp"
 #include "core/surface_index.hpp"
@@ -160,6 +161,29 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   const TriangleSoup& osoup = oracle_tris.triangles.empty() ? tris : oracle_tris;
   const PolygonMesh& omesh = oracle_tris.triangles.empty() ? mesh : oracle_mesh;
   InsideOracle oracle(osoup, p.oracle_rays, p.seed);
+  // The fast path (docs/algorithm.md §6.6): a closed input checked to be a valid solid with exact
+  // predicates is labelled by one clean ray per point.
+  if (!p.fast_path) {
+    out.fast_path_reason = "fast path off";
+  } else if (out.open_input) {
+    out.fast_path_reason = "open input";
+  } else if (oracle_tris.triangles.empty()) {
+    out.fast_path_reason = "no valid face at the oracle's weld";
+  } else {
+    SolidTolerances tol;
+    tol.snap = diag0 * 1e-9;  // the oracle's weld: its topology is the one checked
+    const SolidCheck check = check_solid(oracle_mesh, tol, false);
+    // (non-planar faces, 203/204, do not matter to the rays)
+    out.fast_path = check.closed_manifold;
+    out.fast_path_reason = "not a closed 2-manifold";
+    for (const SolidError& e : check.errors)
+      if (e.code != solid_code::kNonPlanarPolygon && e.code != solid_code::kNonPlanarNormals) {
+        out.fast_path_reason = std::to_string(e.code) + " " + e.name;
+        break;
+      }
+    if (out.fast_path) out.fast_path_reason.clear();
+  }
+  oracle.set_valid_solid(out.fast_path);
   oracle.set_merge_distance(out.dist);
   oracle.set_enclosure(p.fill_enclosed);
   const VerticalOracle vertical(osoup, cover_triangles(osoup, omesh), out.dist, ground_z);

@@ -65,6 +65,10 @@ struct Preprocessed {
   double open_boundary_length = 0;
   size_t boundary_wall_planes = 0;
   VolumeCheck volume_check;
+  // The input is a valid solid and the labelling took the fast path (docs/algorithm.md §6.6);
+  // otherwise why not (the first validity error, "open input", or "fast path off").
+  bool fast_path = false;
+  std::string fast_path_reason;
   bool truncated = false;
   double seconds = 0;
   std::vector<std::string> problems;

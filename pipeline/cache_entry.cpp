@@ -62,7 +62,9 @@ json outcome_to_json(const BuildingOutcome& b) {
             {"oracle", b.volume_check.oracle},
             {"open_input", b.volume_check.open_input},
             {"relabelled", b.volume_check.relabelled},
-            {"flagged", b.volume_check.flagged}}},
+            {"flagged", b.volume_check.flagged},
+            {"fast_path", b.volume_check.fast_path},
+            {"fast_path_reason", b.volume_check.fast_path_reason}}},
           {"problems", b.problems},
           {"levels", std::move(levels)},
           {"sizes",
@@ -107,6 +109,8 @@ void outcome_from_json(const json& j, BuildingOutcome& b) {
     b.volume_check.open_input = vc->value("open_input", false);
     b.volume_check.relabelled = vc->value("relabelled", false);
     b.volume_check.flagged = vc->value("flagged", false);
+    b.volume_check.fast_path = vc->value("fast_path", false);
+    b.volume_check.fast_path_reason = vc->value("fast_path_reason", std::string());
   }
   b.problems = j.at("problems").get<std::vector<std::string>>();
   b.levels.clear();

@@ -280,6 +280,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     o.open_input = pre.open_input;
     o.relabelled = v.relabelled;
     o.flagged = v.flagged;
+    o.fast_path = pre.fast_path;
+    o.fast_path_reason = pre.fast_path_reason;
   }
   add_problems(out.problems, pre.problems);
   if (pre.components.empty()) throw std::runtime_error("preprocessing produced no interior cells");

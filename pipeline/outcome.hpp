@@ -71,6 +71,9 @@ struct VolumeCheckOutcome {
   std::string method;   // "signed volume" or "vertical columns"; empty: no estimate
   std::string oracle;   // "parity" or "vertical": the labelling kept
   bool open_input = false, relabelled = false, flagged = false;
+  // The labelling's fast path for valid solids (docs/algorithm.md §6.6), or why not.
+  bool fast_path = false;
+  std::string fast_path_reason;
 };
 
 struct BuildingOutcome {

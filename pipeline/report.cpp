@@ -94,7 +94,8 @@ json building_report(const BuildingOutcome& b) {
     j["volume_check"] = {{"estimate", num(b.volume_check.estimate)}, {"cell", num(b.volume_check.cell)},
                          {"ratio", num(b.volume_check.ratio)},       {"method", b.volume_check.method},
                          {"oracle", b.volume_check.oracle},          {"open_input", b.volume_check.open_input},
-                         {"relabelled", b.volume_check.relabelled},  {"flagged", b.volume_check.flagged}};
+                         {"relabelled", b.volume_check.relabelled},  {"flagged", b.volume_check.flagged},
+                         {"fast_path", b.volume_check.fast_path},    {"fast_path_reason", b.volume_check.fast_path_reason}};
   if (b.massing.features.valid) {  // building massing features (pipeline/massing.hpp)
     nlohmann::json f = nlohmann::json::object();
     add_building_attributes(f, b.massing);

@@ -123,6 +123,10 @@ int main(int argc, char** argv) {
   app.add_option("--html", html, "HTML page of the run (default: the report's name with .report.json -> .html)");
   app.add_flag("--no-html", no_html, "do not write the HTML page");
   app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
+  bool no_fast_path = false;
+  app.add_flag("--no-fast-path", no_fast_path,
+               "label every building by the full vote, also valid solids (config preprocess.fast_path: false; "
+               "for A/B benchmarks)");
   app.set_version_flag("--version", MC_VERSION);
   app.footer(kFooter);
   if (const auto code = mc::pipeline::parse_or_exit(app, argc, argv)) return *code;
@@ -133,6 +137,7 @@ int main(int argc, char** argv) {
     if (threads >= 0) cfg.params.threads = threads;
     if (timeout >= 0) cfg.params.timeout_s = timeout;
     if (!lod.empty()) cfg.run.lod = lod;
+    if (no_fast_path) cfg.params.pre.fast_path = false;
 
     const bool sequence = input == "-" || input.ends_with(".jsonl");
     mc::pipeline::RunOptions opt;

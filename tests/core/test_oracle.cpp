@@ -49,6 +49,30 @@ TEST(Oracle, ClosedLPrism) { EXPECT_EQ(misclassified(test::l_prism()), 0); }
 
 TEST(Oracle, OpenBottomLPrism) { EXPECT_EQ(misclassified(test::l_prism(false)), 0); }
 
+// The fast path for valid solids (docs/algorithm.md §6.6): two clean rays that agree decide a
+// point. On a valid solid it labels like the vote, also for points whose rays run through the
+// L's edges and vertices (those fall back to the vote).
+TEST(Oracle, ValidSolidFastPathLabelsLikeTheVote) {
+  const TriangleSoup soup = triangulate(test::l_prism());
+  InsideOracle vote(soup, 5, 1), fast(soup, 5, 1);
+  fast.set_valid_solid(true);
+  const auto probes = l_probes();
+  int wrong = 0, differ = 0;
+  for (size_t i = 0; i < probes.size(); ++i) {
+    wrong += fast.inside(probes[i].p, i) != probes[i].inside;
+    differ += fast.inside(probes[i].p, i) != vote.inside(probes[i].p, i);
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(differ, 0);
+  // A ray up from inside that leaves through the middle of the roof is clean; one aimed at the
+  // roof corner above the notch (4, 4, 6), where walls and roof meet, is not.
+  bool clean = false;
+  EXPECT_EQ(fast.count_crossings({2, 1, 3}, {0.01, 0.02, 1}, &clean) & 1, 1);
+  EXPECT_TRUE(clean);
+  fast.count_crossings({2, 2, 3}, {2, 2, 3}, &clean);
+  EXPECT_FALSE(clean);
+}
+
 TEST(Oracle, FlippedAndDuplicatedFaces) {
   PolygonMesh m = test::as_mesh(triangulate(test::l_prism(false)), test::l_prism(false));
   for (size_t f = 0; f < m.faces.size(); f += 3) test::flip_face(m, f);

@@ -211,6 +211,36 @@ TEST(Preprocess, HairBlockedCellIsCutWhenTheGapIsSafe) {
   EXPECT_GT(without.hausdorff, 1.5);
 }
 
+// The fast path (docs/algorithm.md §6.6) is taken for a valid solid and refused, with the reason,
+// for an input that is not one; a valid solid's cell is the same with and without it.
+TEST(Preprocess, FastPathOnlyForValidSolidsAndSameCell) {
+  PreprocessParams p;
+  p.cell_size = kCell;
+  p.dist_thresh = kCell / 4;
+  p.compute_hausdorff = false;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  const PolygonMesh house = test::dormer_house();
+  const Preprocessed fast = preprocess(house, p, deadline);
+  EXPECT_TRUE(fast.fast_path);
+  EXPECT_EQ(fast.fast_path_reason, "");
+  PreprocessParams off = p;
+  off.fast_path = false;
+  const Preprocessed slow = preprocess(house, off, deadline);
+  EXPECT_FALSE(slow.fast_path);
+  EXPECT_EQ(slow.fast_path_reason, "fast path off");
+  EXPECT_EQ(fast.cells, slow.cells);
+  EXPECT_EQ(fast.inside_cells, slow.inside_cells);
+  EXPECT_NEAR(fast.volume_check.cell, slow.volume_check.cell, 1e-9);
+  EXPECT_LT(fast.oracle_points, slow.oracle_points + 1);  // same points, fewer rays each
+
+  const Preprocessed flipped = preprocess(flip_30_percent(house), p, deadline);
+  EXPECT_FALSE(flipped.fast_path);
+  EXPECT_NE(flipped.fast_path_reason.find("ORIENTATION"), std::string::npos) << flipped.fast_path_reason;
+  const Preprocessed open = preprocess(missing_wall(house), p, deadline);
+  EXPECT_FALSE(open.fast_path);
+  EXPECT_FALSE(open.fast_path_reason.empty());
+}
+
 TEST(Preprocess, EmptyAndDegenerateInputsThrowClearErrors) {
   PreprocessParams p;
   const auto deadline = Clock::now() + std::chrono::seconds(10);
