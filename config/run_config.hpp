@@ -1,5 +1,6 @@
 // Pipeline settings that are not algorithm parameters (those live in core/params.hpp).
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -21,7 +22,8 @@ struct RunConfig {
 // The in-flight bound actually used, given the resolved worker thread count (>= 1).
 inline int effective_in_flight(const RunConfig& run, int worker_threads) {
   if (run.in_flight > 0) return run.in_flight;
-  return 2 * (worker_threads > 0 ? worker_threads : 1);
+  // Room for the largest-first order (docs/design.md, "Largest buildings first").
+  return std::max(16, 8 * (worker_threads > 0 ? worker_threads : 1));
 }
 
 // True if level index `i` is to be written (empty output_levels = all).

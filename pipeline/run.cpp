@@ -207,27 +207,55 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   std::atomic<bool> stop{false};
   size_t next_sequence = 0, flagged = 0;
 
+  // Largest first (docs/design.md, "Largest buildings first"): the source reads up to `in_flight`
+  // features ahead and starts the one with the most vertices, so a large building does not start
+  // last and leave the other cores idle at the end. Outputs keep the input order (the sequencer).
+  // The buildings started but not written are bounded by the limiter; when it is one short of full,
+  // the source starts the lowest waiting sequence instead, so the building the writer waits for is
+  // always among those in flight (never a deadlock), and memory stays bounded by `in_flight`.
+  std::vector<Msg> ahead;  // read, not started; the source body runs on one thread at a time
+  bool input_done = false;
+  size_t started = 0;
+  std::atomic<size_t> written{0};
+  const size_t window = static_cast<size_t>(res.in_flight);
   tbb::flow::graph g;
   tbb::flow::input_node<Msg> source(g, [&](tbb::flow_control& fc) -> Msg {
     if (stop.load() || interrupt_signal()) {
       fc.stop();
       return {};
     }
-    auto w = std::make_shared<Work>();
-    const auto t = SteadyClock::now();
-    try {
-      if (!reader.next(w->feature)) {
+    while (!input_done && ahead.size() < window) {
+      auto w = std::make_shared<Work>();
+      const auto t = SteadyClock::now();
+      try {
+        if (!reader.next(w->feature)) {
+          input_done = true;
+          break;
+        }
+      } catch (...) {
+        read_error = std::current_exception();
+        stop = true;
         fc.stop();
         return {};
       }
-    } catch (...) {
-      read_error = std::current_exception();
-      stop = true;
+      w->read_seconds = since(t);
+      w->sequence = next_sequence++;
+      ahead.push_back(std::move(w));
+    }
+    if (ahead.empty()) {
       fc.stop();
       return {};
     }
-    w->read_seconds = since(t);
-    w->sequence = next_sequence++;
+    auto lowest = [](const Msg& a, const Msg& b) { return a->sequence < b->sequence; };
+    auto pick = std::min_element(ahead.begin(), ahead.end(), lowest);
+    if (started - written.load() + 1 < window)
+      pick = std::min_element(ahead.begin(), ahead.end(), [](const Msg& a, const Msg& b) {
+        const size_t na = a->feature.vertices.size(), nb = b->feature.vertices.size();
+        return na != nb ? na > nb : a->sequence < b->sequence;
+      });
+    Msg w = std::move(*pick);
+    ahead.erase(pick);
+    ++started;
     return w;
   });
   tbb::flow::limiter_node<Msg> limiter(g, static_cast<size_t>(res.in_flight));
@@ -269,6 +297,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         for (auto& lw : level_writers) lw->write(b.feature);
       }
       b.feature = mc::io::Feature{};  // release the geometry before the reports
+      ++written;  // (before the limiter is decremented: the source counts on it)
       b.time.write = since(t);
       ++res.features;
       // Freed geometry stays in glibc's per-thread arenas; hand it back now and then so that

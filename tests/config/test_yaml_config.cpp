@@ -117,9 +117,9 @@ output_levels: [0.05]
   EXPECT_EQ(j["in_flight"], 9);
 }
 
-TEST(YamlConfig, InFlightDefaultsToTwiceTheThreads) {
+TEST(YamlConfig, InFlightDefaultsToEightTimesTheThreads) {
   const auto c = mc::load_config_string("threads: 3");
-  EXPECT_EQ(mc::effective_in_flight(c.run, 3), 6);
+  EXPECT_EQ(mc::effective_in_flight(c.run, 3), 24);
   EXPECT_EQ(mc::effective_in_flight(mc::load_config_string("in_flight: 4").run, 3), 4);
 }
 
