@@ -19,7 +19,7 @@ struct HausdorffResult {
 // distances to the other soup are taken (CGAL AABB tree). The maxima are lower bounds within
 // `sampling_step` of the true values; triangles that cannot raise the maximum (distance is
 // 1-Lipschitz: corner distance + edge length) are not sampled. The mean is estimated from at
-// most 2·10^5 samples per side (coarser lattice when needed). A step <= 0 means 0.1% of the
+// most 8000 samples per side (coarser lattice when needed; corners and edges always sampled). A step <= 0 means 0.1% of the
 // bounding-box diagonal. Degenerate triangles are ignored. An empty side: distances from it
 // are 0, to it +infinity. Works on open, non-manifold, self-intersecting soups.
 HausdorffResult hausdorff(const TriangleSoup& a, const TriangleSoup& b, double sampling_step);
