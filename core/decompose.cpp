@@ -137,10 +137,11 @@ Prepared refine(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
   return pr;
 }
 
-void finish(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
+// The refined space and the cells on each candidate's positive side (exact predicates: one
+// thread per complex).
+void finish_space(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
   if (!pr.search) return;
   const CellComplex& cx = *pre.complex;
-  const PlaneRegistry& reg = *pre.planes;
   pr.space = make_space(cx, std::vector<uint32_t>(pr.space.cells));
   const std::vector<uint32_t>& cells = pr.space.cells;
   for (uint32_t plane : pr.input.pool) {
@@ -150,6 +151,12 @@ void finish(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
     pr.input.positive.push_back(std::move(pos));
   }
   pr.input.ctx = ctx;
+}
+
+// The search's root: the refined space analysed (reads only; several at once are fine).
+void finish_root(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
+  if (!pr.search) return;
+  const PlaneRegistry& reg = *pre.planes;
   const auto& pool = pr.input.pool;
   const PlaneResolver lookup = [&](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
     for (uint32_t id : pool)
@@ -158,6 +165,11 @@ void finish(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
   };
   pr.root = analyze_part(pr.space, pr.space.all(), ctx, lookup);
   pr.search = pr.root.e_sig > 0 && !pr.root.candidates.empty();
+}
+
+void finish(const Preprocessed& pre, Prepared& pr, const AnalysisContext& ctx) {
+  finish_space(pre, pr, ctx);
+  finish_root(pre, pr, ctx);
 }
 
 Prepared prepare(Preprocessed& pre, const Work& w, const AnalysisContext& ctx) {
@@ -736,7 +748,8 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
         prepared.push_back(refine(pre, w, ctx));
         prepared.back().input.deadline = deadline;
       }
-      for (Prepared& pr : prepared) finish(pre, pr, ctx);
+      for (Prepared& pr : prepared) finish_space(pre, pr, ctx);
+      tbb::parallel_for(size_t(0), prepared.size(), [&](size_t i) { finish_root(pre, prepared[i], ctx); });
       for (Prepared& pr : prepared) pr.input.space = &pr.space;
       std::vector<SearchResult> results(work.size());
       auto run_one = [&](size_t i) {
@@ -829,20 +842,21 @@ std::vector<PolygonMesh> level_part_meshes(const Preprocessed& pre, const std::v
   }
   // The corners of every part's faces; a part that dropped one of them is extracted again keeping
   // them (the drop rule depends on the part alone, so the others are already right).
-  std::vector<Surface> surfaces;
+  // Each part's surface only reads the complex: extracted in parallel, in part order.
+  std::vector<Surface> surfaces(leaves.size());
+  tbb::parallel_for(size_t(0), leaves.size(),
+                    [&](size_t p) { surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, nullptr}); });
   std::unordered_set<uint32_t> corners;
-  for (const auto& l : leaves) {
-    surfaces.push_back(extract_surface(cx, l, &solid, {&part_of, nullptr}));
-    for (const auto& f : surfaces.back().faces)
+  for (const Surface& s : surfaces)
+    for (const auto& f : s.faces)
       for (const auto& r : f.rings) corners.insert(r.begin(), r.end());
-  }
-  std::vector<PolygonMesh> out;
-  for (size_t p = 0; p < leaves.size(); ++p) {
+  std::vector<PolygonMesh> out(leaves.size());
+  tbb::parallel_for(size_t(0), leaves.size(), [&](size_t p) {
     const auto& dropped = surfaces[p].dropped;
     if (std::any_of(dropped.begin(), dropped.end(), [&](uint32_t v) { return corners.count(v) > 0; }))
       surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, &corners});
-    out.push_back(surface_to_mesh(pre, surfaces[p]));
-  }
+    out[p] = surface_to_mesh(pre, surfaces[p]);
+  });
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <span>
 #include <unordered_map>
 
 #include "core/hull.hpp"
@@ -180,6 +181,10 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
 // edges around a chamfer add up into one stronger line.
 void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
   std::vector<size_t> cand;
+  // After a merge at (i, j) the scan starts again from the first pair, but every pair of lines
+  // that were both there before and whose first line came before i was found not to merge (a
+  // pure function of the two lines): those rows only look at the new lines (from `first_new`).
+  size_t resume = 0, first_new = 0;
   for (int guard = 0; guard < 1000; ++guard) {
     bool merged = false;
     // Only lines sharing a plane can merge: index them by plane (ascending positions, so the
@@ -199,6 +204,7 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
       for (size_t ci = 0; ci < cand.size() && !merged; ++ci) {
         const size_t j = cand[ci];
+        if (i < resume && j < first_new) continue;  // checked before the last merge
         ConcaveLine& L1 = lines[i].line;
         ConcaveLine& L2 = lines[j].line;
         if (!lines[i].reflex && !lines[j].reflex) continue;
@@ -256,6 +262,8 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
           keep_piece(std::max(lo, M.t1), hi);
         }
         next.push_back({M, M.angle > M_PI});
+        resume = i;
+        first_new = lines.size() - 2;
         lines = std::move(next);
         merged = true;
       }
@@ -286,7 +294,7 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
   info.hash = hash_bits(info.bits);
 
   // Volume, boundary incidences and hull points.
-  std::unordered_map<uint64_t, std::vector<Incidence>> by_edge;
+  std::vector<std::pair<uint64_t, Incidence>> edge_uses;  // (edge key, use) in boundary order
   std::vector<uint64_t> vertex_planes;  // (vertex << 32 | plane) of every boundary facet corner
   for (uint32_t i = 0; i < s.cells.size(); ++i) {
     if (!test_bit(info.bits, i)) continue;
@@ -297,7 +305,7 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
       const auto loop = cx.outward_loop(side.facet, s.cells[i]);
       for (size_t k = 0; k < loop.size(); ++k) {
         const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
-        by_edge[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)].push_back({side.facet, s.cells[i], a, b});
+        edge_uses.push_back({(uint64_t(std::min(a, b)) << 32) | std::max(a, b), {side.facet, s.cells[i], a, b}});
         vertex_planes.push_back((uint64_t(a) << 32) | cx.facet(side.facet).plane);
       }
     }
@@ -322,12 +330,19 @@ PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
 
   // Dihedral edges between boundary faces on different planes (2-manifold edges only).
   std::vector<DihedralEdge> edges;
-  std::vector<uint64_t> keys;
-  keys.reserve(by_edge.size());
-  for (const auto& kv : by_edge) keys.push_back(kv.first);
-  std::sort(keys.begin(), keys.end());  // deterministic order
-  for (uint64_t key : keys) {
-    const auto& inc = by_edge[key];
+  // The uses of each edge, edges in key order (deterministic), uses in boundary order.
+  std::stable_sort(edge_uses.begin(), edge_uses.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Incidence> uses;
+  uses.reserve(edge_uses.size());
+  for (const auto& e : edge_uses) uses.push_back(e.second);
+  std::vector<std::pair<uint64_t, std::span<const Incidence>>> by_edge;
+  for (size_t i = 0; i < edge_uses.size();) {
+    size_t j = i;
+    while (j < edge_uses.size() && edge_uses[j].first == edge_uses[i].first) ++j;
+    by_edge.emplace_back(edge_uses[i].first, std::span<const Incidence>(uses.data() + i, j - i));
+    i = j;
+  }
+  for (const auto& [key, inc] : by_edge) {
     if (inc.size() > 2) ++info.pinch_edges;
     if (inc.size() != 2) continue;
     const uint32_t pa = cx.facet(inc[0].facet).plane, pb = cx.facet(inc[1].facet).plane;

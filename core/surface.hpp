@@ -2,6 +2,7 @@
 // coplanar neighbours merged into polygons with holes, collinear vertices dropped where no other
 // face needs them (docs/algorithm.md §15).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <unordered_map>
@@ -44,32 +45,37 @@ std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_use
 // faces using the edge; `face_of` maps an element of those lists to a face id. Sorted.
 template <class Uses, class FaceOf>
 std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
-  std::map<std::pair<uint32_t, uint32_t>, uint32_t> node;  // (vertex, face) -> union-find id
-  std::vector<uint32_t> parent;
+  // Union-find over the (vertex, face) incidences, held in one sorted array (this runs for every
+  // part the search analyses: no node-based map).
+  std::vector<uint64_t> node;  // vertex << 32 | face, sorted, unique
+  for (const auto& [key, inc] : uses)
+    for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)})
+      for (const auto& x : inc) node.push_back((uint64_t(v) << 32) | face_of(x));
+  std::sort(node.begin(), node.end());
+  node.erase(std::unique(node.begin(), node.end()), node.end());
+  std::vector<uint32_t> parent(node.size());
+  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
   auto id = [&](uint32_t v, uint32_t f) {
-    auto [it, added] = node.try_emplace({v, f}, static_cast<uint32_t>(parent.size()));
-    if (added) parent.push_back(it->second);
-    return it->second;
+    return static_cast<uint32_t>(std::lower_bound(node.begin(), node.end(), (uint64_t(v) << 32) | f) - node.begin());
   };
   auto find = [&](uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
   for (const auto& [key, inc] : uses) {
-    for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)}) {
-      for (const auto& x : inc) id(v, face_of(x));
-      if (inc.size() == 2) parent[find(id(v, face_of(inc[0])))] = find(id(v, face_of(inc[1])));
-    }
+    if (inc.size() != 2) continue;
+    for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)})
+      parent[find(id(v, face_of(inc[0])))] = find(id(v, face_of(inc[1])));
   }
   std::vector<uint32_t> out;
   uint32_t last = UINT32_MAX, root = UINT32_MAX;
-  for (const auto& [vf, i] : node) {  // ordered by vertex
-    const uint32_t r = find(i);
-    if (vf.first != last) {
-      last = vf.first;
+  for (uint32_t i = 0; i < node.size(); ++i) {  // ordered by vertex
+    const uint32_t v = static_cast<uint32_t>(node[i] >> 32), r = find(i);
+    if (v != last) {
+      last = v;
       root = r;
-    } else if (r != root && (out.empty() || out.back() != vf.first)) {
-      out.push_back(vf.first);
+    } else if (r != root && (out.empty() || out.back() != v)) {
+      out.push_back(v);
     }
   }
   return out;
