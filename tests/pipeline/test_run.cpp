@@ -1,5 +1,8 @@
 // run_city end to end on real files: nothing lost, closed parts, reports, determinism, failures.
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
 
 #include "config/config.hpp"
 #include "io/cityjson.hpp"
@@ -191,15 +194,67 @@ TEST(Run, RepeatedRunsInOneProcessAreIdentical) {
   mc::test::expect_valid_output(one.output);
 }
 
+// Jobs start largest first within the read-ahead window (docs/design.md, "Largest buildings
+// first"); outputs keep the input order, and a window as small as one building (FIFO) or two
+// (one slot for the building the writer waits for) neither deadlocks nor changes a byte.
+TEST(Run, LargestFirstStartsTheLargestAndKeepsTheOutputsInInputOrder) {
+  MC_REQUIRE_DATA(tile, "upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.jsonl");
+  mc::test::TempDir dir("run_largest_first");
+  const std::string input = head_of_sequence(tile, 16, dir / "head16.city.jsonl");
+  Params p = mc::test::default_config().params;
+  p.dec.levels = {0.1, 0.01};
+  p.timeout_s = 0;
+  std::vector<std::string> started;
+  std::map<std::string, size_t> size;
+  std::mutex m;
+  auto record = [&](mc::io::Feature& f) {
+    std::lock_guard<std::mutex> lock(m);
+    started.push_back(f.id);
+    size[f.id] = f.vertices.size();
+  };
+  RunConfig fifo, two, wide;
+  fifo.in_flight = 1;
+  two.in_flight = 2;
+  const Outputs a = run_on(input, dir, "w16", 1, p, wide, record);  // one thread: start order is the schedule
+  ASSERT_EQ(started.size(), 16u);
+  size_t largest = 0;
+  for (const auto& [id, n] : size) largest = std::max(largest, n);
+  EXPECT_EQ(size[started.front()], largest) << "the largest building starts first";
+  const Outputs b = run_on(input, dir, "w1", 2, p, fifo);
+  const Outputs c = run_on(input, dir, "w2", 2, p, two);
+  for (const Outputs* o : {&b, &c}) {
+    EXPECT_TRUE(mc::test::slurp(a.output) == mc::test::slurp(o->output)) << o->output;
+    const auto la = mc::test::level_files(a.output), lo = mc::test::level_files(o->output);
+    ASSERT_EQ(la.size(), lo.size());
+    for (size_t i = 0; i < la.size(); ++i) EXPECT_TRUE(mc::test::slurp(la[i]) == mc::test::slurp(lo[i])) << lo[i];
+  }
+  // The report lists the buildings in input order.
+  const json r = json::parse(mc::test::slurp(a.report));
+  std::istringstream lines(mc::test::slurp(input));
+  std::string line;
+  std::getline(lines, line);
+  for (const json& building : r["buildings"]) {
+    ASSERT_TRUE(static_cast<bool>(std::getline(lines, line)));
+    EXPECT_EQ(building["id"], json::parse(line)["id"]);
+  }
+}
+
 TEST(Run, AFailingBuildingIsWrittenThroughAndTheOthersProcessed) {
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
   mc::test::TempDir dir("run_failure");
   Params p = mc::test::default_config().params;
   p.dec.levels = {0.1, 0.01};
+  // The input's first building is broken (jobs start largest first, so not necessarily first).
   std::string broken;
+  {
+    std::istringstream lines(mc::test::slurp(input));
+    std::string line;
+    std::getline(lines, line);  // the header
+    std::getline(lines, line);
+    broken = json::parse(line)["id"].get<std::string>();
+  }
   const Outputs o = run_on(input, dir, "f", 2, p, {}, [&](mc::io::Feature& f) {
-    if (!broken.empty()) return;
-    broken = f.id;
+    if (f.id != broken) return;
     for (auto& v : f.vertices) v.z = 0;  // flattened: nothing inside, the job fails
   });
   EXPECT_EQ(o.result.counts.at("failed"), 1u);
