@@ -14,6 +14,7 @@
 #include "core/hull.hpp"
 #include "core/search.hpp"
 #include "core/surface.hpp"
+#include "core/union_find.hpp"
 
 namespace mc {
 
@@ -273,12 +274,6 @@ std::vector<PartInfo> analyze_parts(const CellSpace& space, const LevelSpace& ls
   return info;
 }
 
-// Change of a level's cost (docs/algorithm.md §11.1 with the whole-building normalisers of §11.3) when
-// its part count, ΣΔ and Σ E_all change by dn, d_delta and d_e.
-double level_cost_change(const DecomposeParams& p, double n_max, double delta0, double dn, double d_delta, double d_e) {
-  const double d0 = delta0 > 0 ? delta0 : 1.0;
-  return dn / n_max + (p.sigma - 1.0) * d_delta / d0 + p.sigma * d_e / (p.k * n_max);
-}
 
 // Merges neighbouring parts while that lowers the level's cost (docs/algorithm.md §14.3, with the
 // whole-building normalisers of §11.3). The search is inflated (σ > 1), keeps only the best
@@ -288,7 +283,7 @@ double level_cost_change(const DecomposeParams& p, double n_max, double delta0, 
 // concave line significant at this level (the level would cut it again) and stays 2-manifold.
 // Greedy, best decrease first; ties by part index (deterministic).
 void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, std::vector<Work>& work,
-                             const AnalysisContext& ctx, double n_max, double delta0) {
+                             const AnalysisContext& ctx, const Objective& obj) {
   const CellComplex& cx = *pre.complex;
   if (work.size() < 2) return;
   const LevelSpace ls(cx, work);
@@ -296,7 +291,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
   const auto& local = ls.local;
   // Cost change of replacing parts a and b by their union u (|P| drops by one).
   auto gain = [&](const PartInfo& a, const PartInfo& b, const PartInfo& u) {
-    return level_cost_change(p, n_max, delta0, -1.0, u.delta - a.delta - b.delta, u.e_all - a.e_all - b.e_all);
+    return obj.change(-1.0, u.delta - a.delta - b.delta, u.e_all - a.e_all - b.e_all);
   };
   std::vector<PartInfo> info = analyze_parts(space, ls, work, ctx);
   std::vector<bool> alive(work.size(), true);
@@ -393,7 +388,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
 // few are improved, so the gain in parts is small for its time (docs/algorithm.md §14.1,
 // docs/design.md). Hence off by default.
 void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<Work> prev, std::vector<Work>& work,
-                        const AnalysisContext& ctx, double n_max, double delta0, Clock::time_point deadline,
+                        const AnalysisContext& ctx, const Objective& obj, Clock::time_point deadline,
                         LevelResult& level) {
   CellComplex& cx = *pre.complex;
   if (prev.size() < 2 || work.size() < 3) return;
@@ -519,7 +514,7 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
     // Never trade significant concave lines for fewer parts (a root the search could not cut).
     if (sum_sig > cd.old_sig) continue;
     const double dn = static_cast<double>(cd.sr.parts.size()) - static_cast<double>(cd.old_pieces.size());
-    const double gain = level_cost_change(p, n_max, delta0, dn, sum_delta - cd.old_delta, sum_e - cd.old_e);
+    const double gain = obj.change(dn, sum_delta - cd.old_delta, sum_e - cd.old_e);
     if (gain < -1e-9) gains.emplace_back(gain, i);
   }
   std::sort(gains.begin(), gains.end());
@@ -568,7 +563,7 @@ double weighted_convexity(const PartInfo& info) { return info.volume * reported_
 // the per-part floor, small, clearly concave parts would come back because the whole-building
 // objective barely sees them (docs/algorithm.md §14.4, docs/design.md).
 void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& prev,
-                        std::vector<Work>& work, const AnalysisContext& ctx, double n_max, double delta0) {
+                        std::vector<Work>& work, const AnalysisContext& ctx, const Objective& obj) {
   const CellComplex& cx = *pre.complex;
   if (prev.empty()) return;
   std::unordered_map<uint32_t, uint32_t> prev_of;  // current cell -> previous part
@@ -578,12 +573,8 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
     for (uint32_t c : prev_cells[q]) prev_of[c] = q;
   }
   // Groups of previous parts (union-find, smallest index as root).
-  std::vector<uint32_t> up(prev.size());
-  for (uint32_t q = 0; q < prev.size(); ++q) up[q] = q;
-  auto find = [&](uint32_t q) {
-    while (up[q] != q) q = up[q] = up[up[q]];
-    return q;
-  };
+  UnionFind up(prev.size());
+  auto find = [&](uint32_t q) { return up.find(q); };
   std::vector<uint32_t> first_owner(work.size());
   for (uint32_t j = 0; j < work.size(); ++j) {
     uint32_t r = CellComplex::kNone;
@@ -592,7 +583,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
       if (it == prev_of.end()) return;  // a cell from no previous part: leave the level as it is
       const uint32_t o = find(it->second);
       if (r == CellComplex::kNone) r = o;
-      else if (o != r) up[std::max(o, r)] = std::min(o, r), r = std::min(o, r);
+      else if (o != r) up.unite_low(o, r), r = std::min(o, r);
     }
     if (r == CellComplex::kNone) return;
     first_owner[j] = r;  // find() later gives the group's final root
@@ -633,7 +624,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
       d_weighted += weighted_convexity(info[j]);
     }
     const double dn = double(js.size()) - double(qs.size());
-    const double change = level_cost_change(p, n_max, delta0, dn, d_delta, double(d_e));
+    const double change = obj.change(dn, d_delta, double(d_e));
     if (change > 1e-12) costly.emplace_back(change, g, d_weighted);
   }
   std::sort(costly.begin(), costly.end(), [](const auto& a, const auto& b) {
@@ -661,7 +652,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
 
 // Whole-building statistics of a level (normalised by the singleton cell R, docs/algorithm.md §11.3).
 void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<Work>& work,
-                      const AnalysisContext& ctx, double n_max, double delta0, LevelResult& out) {
+                      const AnalysisContext& ctx, const Objective& obj, LevelResult& out) {
   const CellComplex& cx = *pre.complex;
   const LevelSpace ls(cx, work);
   const CellSpace& space = ls.space;
@@ -694,11 +685,6 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
   out.mean_convexity /= std::max<size_t>(1, work.size());
   out.convexity = sum_v > 0 ? wsum / sum_v : 0;
   out.remaining_concave = sum_e;
-  Objective obj;
-  obj.n_max = n_max;
-  obj.delta0 = delta0 > 0 ? delta0 : 1.0;
-  obj.sigma = p.sigma;
-  obj.k = p.k;
   out.g = obj.g(work.size(), sum_delta);
   out.h = obj.h(sum_e, sum_delta);
   out.cost = out.g + p.sigma * out.h;
@@ -716,7 +702,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
   for (const auto& c : pre.components) total_volume += c.volume;
 
   // Whole-building normalisers from the singleton cell R (all components together).
-  double n_max = 1, delta0 = 1;
+  Objective obj = Objective::of_root(0, 0, p);
   {
     std::vector<uint32_t> all;
     for (const Work& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
@@ -724,8 +710,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     const CellSpace space = make_space(cx, all);
     const PartInfo r = analyze_part(space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), kNoNewPlanes);
     out.concave_edges = r.e_all;
-    n_max = r.e_all + 1;
-    delta0 = r.delta;
+    obj = Objective::of_root(r.e_all, r.delta, p);
   }
 
   for (size_t li = 0; li < p.levels.size(); ++li) {
@@ -779,16 +764,16 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       std::vector<Work> prev = std::move(work);
       work = std::move(next);
       if (p.revisit_boundaries && li > 0)  // (takes its own copy of prev: the undo below needs it)
-        revisit_boundaries(pre, p, prev, work, ctx, n_max, delta0, deadline, level);
+        revisit_boundaries(pre, p, prev, work, ctx, obj, deadline, level);
       if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
-      if (p.merge_convex_parts) merge_convex_neighbours(pre, p, work, ctx, n_max, delta0);
-      if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev, work, ctx, n_max, delta0);
+      if (p.merge_convex_parts) merge_convex_neighbours(pre, p, work, ctx, obj);
+      if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev, work, ctx, obj);
     } else {
       out.partial = true;
       if (out.reason.empty()) out.reason = "deadline reached before LoD " + std::to_string(level.lod);
       level.truncated = true;
     }
-    level_statistics(pre, p, work, ctx, n_max, delta0, level);
+    level_statistics(pre, p, work, ctx, obj, level);
     level.seconds = seconds_since(tl);
     out.levels.push_back(std::move(level));
   }

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/union_find.hpp"
+
 namespace mc {
 
 Hull convex_hull(const std::vector<Vec3>& points) {
@@ -28,12 +30,7 @@ Hull convex_hull(const std::vector<Vec3>& points) {
   // sets alone, whatever the order of the input: the interior point is the mean of the hull's
   // vertices in lexicographic order, a facet's vertices are put in angular order starting from
   // the lexicographically smallest, and volumes and facets are sorted.
-  std::vector<uint32_t> up(m.number_of_faces());
-  for (uint32_t i = 0; i < up.size(); ++i) up[i] = i;
-  auto find = [&](uint32_t i) {
-    while (up[i] != i) i = up[i] = up[up[i]];
-    return i;
-  };
+  UnionFind up(m.number_of_faces());
   for (auto e : m.edges()) {
     const auto he = m.halfedge(e);
     const auto f1 = m.face(he), f2 = m.face(m.opposite(he));
@@ -42,7 +39,7 @@ Hull convex_hull(const std::vector<Vec3>& points) {
     const auto& b = m.point(m.target(he));
     const auto& c = m.point(m.target(m.next(he)));
     const auto& d = m.point(m.target(m.next(m.opposite(he))));
-    if (CGAL::coplanar(a, b, c, d)) up[find(uint32_t(f1.idx()))] = find(uint32_t(f2.idx()));
+    if (CGAL::coplanar(a, b, c, d)) up.link(uint32_t(f1.idx()), uint32_t(f2.idx()));
   }
   auto less = [](const Vec3& a, const Vec3& b) {
     return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
@@ -51,7 +48,7 @@ Hull convex_hull(const std::vector<Vec3>& points) {
   for (auto f : m.faces())
     for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
       const auto& p = m.point(v);
-      groups[find(uint32_t(f.idx()))].push_back({p.x(), p.y(), p.z()});
+      groups[up.find(uint32_t(f.idx()))].push_back({p.x(), p.y(), p.z()});
     }
   // Interior point: the mean of the hull's vertices in lexicographic order.
   std::vector<Vec3> corners;

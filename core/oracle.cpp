@@ -1,4 +1,5 @@
 #include "core/oracle.hpp"
+#include "core/union_find.hpp"
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -268,18 +269,14 @@ bool split_glued_shells(const TriangleSoup& soup, const std::vector<uint32_t>& t
 
 void InsideOracle::assign_groups(const TriangleSoup& soup) {
   const size_t n = soup.triangles.size();
-  std::vector<uint32_t> parent(n);
-  for (uint32_t i = 0; i < n; ++i) parent[i] = i;
-  auto find = [&](uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind uf(n);
+  auto find = [&](uint32_t x) { return uf.find(x); };
   std::unordered_map<uint64_t, std::vector<uint32_t>> edges;
   for (uint32_t t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = soup.triangles[t][k], b = soup.triangles[t][(k + 1) % 3];
       auto& e = edges[edge_key(a, b)];
-      if (!e.empty()) parent[find(t)] = find(e.front());
+      if (!e.empty()) uf.link(t, e.front());
       e.push_back(t);
     }
   std::vector<uint8_t> open(n, 0);

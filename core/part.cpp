@@ -9,6 +9,7 @@
 
 #include "core/hull.hpp"
 #include "core/surface.hpp"
+#include "core/union_find.hpp"
 
 namespace mc {
 
@@ -129,22 +130,17 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
   std::vector<RawLine> out;
   for (const auto& [key, idx] : groups) {
     // Union-find over the group's edges through shared endpoints.
-    std::vector<size_t> parent(idx.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](size_t x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    std::unordered_map<uint32_t, size_t> at_vertex;
-    for (size_t k = 0; k < idx.size(); ++k) {
+    UnionFind chain(idx.size());
+    std::unordered_map<uint32_t, uint32_t> at_vertex;
+    for (uint32_t k = 0; k < idx.size(); ++k) {
       for (uint32_t v : {edges[idx[k]].a, edges[idx[k]].b}) {
         auto [it, fresh] = at_vertex.emplace(v, k);
-        if (!fresh) parent[find(k)] = find(it->second);
-        if (!split_chains) parent[find(k)] = find(0);  // research-code grouping: one line per plane pair
+        if (!fresh) chain.link(k, it->second);
+        if (!split_chains) chain.link(k, 0);  // research-code grouping: one line per plane pair
       }
     }
     std::map<size_t, std::vector<size_t>> chains;
-    for (size_t k = 0; k < idx.size(); ++k) chains[find(k)].push_back(idx[k]);
+    for (uint32_t k = 0; k < idx.size(); ++k) chains[chain.find(k)].push_back(idx[k]);
     for (const auto& [root, members] : chains) {
       const DihedralEdge& e0 = edges[members.front()];
       RawLine rl;

@@ -23,12 +23,7 @@ struct Node {
 
 class Search {
  public:
-  Search(const SearchInput& in, const PartInfo& root) : in_(in) {
-    const auto& dec = *in.ctx.dec;
-    obj_.n_max = root.e_all + 1;
-    obj_.delta0 = root.delta > 0 ? root.delta : 1.0;
-    obj_.sigma = dec.sigma;
-    obj_.k = dec.k;
+  Search(const SearchInput& in, const PartInfo& root) : in_(in), obj_(Objective::of_root(root.e_all, root.delta, *in.ctx.dec)) {
     for (uint32_t i = 0; i < in.pool.size(); ++i) pool_index_[in.pool[i]] = i;
     intern(root);
   }
@@ -100,10 +95,7 @@ class Search {
   }
 
  private:
-  double part_cost(const PartInfo& p) const {
-    return 1.0 / obj_.n_max - p.delta / obj_.delta0 +
-           obj_.sigma * (p.e_all / (obj_.k * obj_.n_max) + p.delta / obj_.delta0);
-  }
+  double part_cost(const PartInfo& p) const { return obj_.part_cost(p.delta, p.e_all); }
 
   static constexpr uint32_t kNew = UINT32_MAX;
 

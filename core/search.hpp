@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/objective.hpp"
 #include "core/part.hpp"
 #include "core/preprocess.hpp"
 
@@ -28,13 +29,6 @@ struct SearchResult {
   int64_t expanded = 0;
   bool deadline_hit = false;
   bool budget_hit = false;
-};
-
-// Objective of a node (paper Eq. 3, 5, 6) for normalisers N_max = e_root + 1 and Δ0.
-struct Objective {
-  double n_max = 1, delta0 = 1, sigma = 2, k = 4;
-  double g(size_t parts, double sum_delta) const { return parts / n_max + (delta0 - sum_delta) / delta0; }
-  double h(double sum_e, double sum_delta) const { return sum_e / (k * n_max) + sum_delta / delta0; }
 };
 
 SearchResult search(const SearchInput& in, const PartInfo& root);

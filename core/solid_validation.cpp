@@ -30,6 +30,8 @@
 #include <unordered_map>
 
 #include "core/hull.hpp"
+#include "core/union_find.hpp"
+#include "core/vertex_fans.hpp"
 
 namespace mc {
 
@@ -336,12 +338,7 @@ bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces
     for (const auto& ring : faces[fi])
       for (size_t i = 0; i < ring.size(); ++i) directed[{ring[i], ring[(i + 1) % ring.size()]}].push_back(static_cast<uint32_t>(fi));
   // Faces joined by edges: connected components.
-  std::vector<uint32_t> parent(faces.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto root = [&](uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind parts(faces.size());
   bool edges_ok = true;
   for (const auto& [e, fs] : directed) {
     if (e.first > e.second && directed.count({e.second, e.first})) continue;  // seen from the other side
@@ -362,10 +359,10 @@ bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces
     }
     std::vector<uint32_t> all = fs;
     if (back != directed.end()) all.insert(all.end(), back->second.begin(), back->second.end());
-    for (size_t i = 1; i < all.size(); ++i) parent[root(all[i])] = root(all[0]);
+    for (size_t i = 1; i < all.size(); ++i) parts.link(all[i], all[0]);
   }
   std::set<uint32_t> components;
-  for (uint32_t f = 0; f < faces.size(); ++f) components.insert(root(f));
+  for (uint32_t f = 0; f < faces.size(); ++f) components.insert(parts.find(f));
   if (components.size() > 1)
     log.add(solid_code::kMultipleComponents, std::to_string(components.size()) + " separate groups of faces");
   return edges_ok;
@@ -375,26 +372,12 @@ bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces
 // faces' triangles, not their rings: a face whose hole touches its outer ring at a vertex has
 // ring corners there that are not the face's wedges around it.
 void check_vertex_fans(const std::vector<std::array<uint32_t, 3>>& triangles, const std::vector<Vec3>& pts, ErrorLog& log) {
-  std::map<uint32_t, std::map<uint32_t, uint32_t>> fan;  // vertex -> neighbour -> union-find parent
-  auto find = [](std::map<uint32_t, uint32_t>& uf, uint32_t x) {
-    while (uf[x] != x) x = uf[x] = uf[uf[x]];
-    return x;
-  };
+  std::vector<std::array<uint32_t, 3>> corners;
   for (const auto& t : triangles)
-    for (size_t i = 0; i < 3; ++i) {
-      const uint32_t v = t[i], prev = t[(i + 2) % 3], next = t[(i + 1) % 3];
-      auto& uf = fan[v];
-      uf.try_emplace(prev, prev);
-      uf.try_emplace(next, next);
-      uf[find(uf, prev)] = find(uf, next);
-    }
-  for (auto& [v, uf] : fan) {
-    std::set<uint32_t> roots;
-    for (auto& [n, p] : uf) roots.insert(find(uf, n));
-    if (roots.size() > 1)
-      log.add(solid_code::kNonManifoldCase, "vertex " + fmt(pts[v]) + " joins " + std::to_string(roots.size()) +
-                                                " separate fans of faces");
-  }
+    for (size_t i = 0; i < 3; ++i) corners.push_back({t[(i + 2) % 3], t[i], t[(i + 1) % 3]});
+  for (const auto& [v, fans] : split_fans(std::move(corners)))
+    log.add(solid_code::kNonManifoldCase, "vertex " + fmt(pts[v]) + " joins " + std::to_string(fans) +
+                                              " separate fans of faces");
 }
 
 }  // namespace

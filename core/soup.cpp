@@ -14,6 +14,7 @@
 #include <list>
 
 #include "core/plane.hpp"
+#include "core/union_find.hpp"
 
 namespace mc {
 
@@ -57,22 +58,6 @@ void translate(PolygonMesh& mesh, Vec3 offset) {
 
 namespace {
 
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  }
-  // The smaller index becomes the root, so the representative is the cluster's first vertex.
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a < b) parent[b] = a; else parent[a] = b;
-  }
-};
-
 struct CellKey {
   int64_t x, y, z;
   bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -110,7 +95,7 @@ std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& vs, const std::vec
           if (it == grid.end()) continue;
           for (uint32_t j : it->second) {
             const bool same = exact ? vs[i] == vs[j] : norm(vs[i] - vs[j]) <= tol;
-            if (same) uf.unite(i, j);
+            if (same) uf.unite_low(i, j);
           }
         }
     grid[k].push_back(i);

@@ -11,6 +11,7 @@
 
 #include "core/complex.hpp"
 #include "core/polygon_mesh.hpp"
+#include "core/union_find.hpp"
 
 namespace mc {
 
@@ -53,24 +54,19 @@ std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
       for (const auto& x : inc) node.push_back((uint64_t(v) << 32) | face_of(x));
   std::sort(node.begin(), node.end());
   node.erase(std::unique(node.begin(), node.end()), node.end());
-  std::vector<uint32_t> parent(node.size());
-  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  UnionFind fans(node.size());
   auto id = [&](uint32_t v, uint32_t f) {
     return static_cast<uint32_t>(std::lower_bound(node.begin(), node.end(), (uint64_t(v) << 32) | f) - node.begin());
-  };
-  auto find = [&](uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
   };
   for (const auto& [key, inc] : uses) {
     if (inc.size() != 2) continue;
     for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)})
-      parent[find(id(v, face_of(inc[0])))] = find(id(v, face_of(inc[1])));
+      fans.link(id(v, face_of(inc[0])), id(v, face_of(inc[1])));
   }
   std::vector<uint32_t> out;
   uint32_t last = UINT32_MAX, root = UINT32_MAX;
   for (uint32_t i = 0; i < node.size(); ++i) {  // ordered by vertex
-    const uint32_t v = static_cast<uint32_t>(node[i] >> 32), r = find(i);
+    const uint32_t v = static_cast<uint32_t>(node[i] >> 32), r = fans.find(i);
     if (v != last) {
       last = v;
       root = r;

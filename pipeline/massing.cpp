@@ -11,6 +11,7 @@
 
 #include "core/decompose.hpp"
 #include "core/hull.hpp"
+#include "core/union_find.hpp"
 
 namespace mc::pipeline {
 
@@ -400,20 +401,15 @@ void finish_massing(BuildingMassing& m, const MassingParams& p) {
         chain[i] = std::max(chain[i], chain[c.other] + (L.parts[i].role == "roof" ? 0 : 1));  // a roof is no tier
   for (int c : chain) f.tiers = std::max(f.tiers, c);
   // Graph: undirected edges, components, independent cycles.
-  std::vector<size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), size_t{0});
-  auto find = [&](size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  mc::UnionFind graph(n);
   for (size_t i = 0; i < n; ++i)
     for (const Contact& c : L.parts[i].contacts)
       if (c.other > i && c.other < n) {
         ++f.edges;
-        parent[find(i)] = find(c.other);
+        graph.link(static_cast<uint32_t>(i), static_cast<uint32_t>(c.other));
       }
   int components = 0;
-  for (size_t i = 0; i < n; ++i) components += find(i) == i;
+  for (uint32_t i = 0; i < n; ++i) components += graph.find(i) == i;
   f.cycles = f.edges - static_cast<int>(n) + components;
   // Footprint union and courtyards (its holes).
   std::vector<Polygon2> polys;
