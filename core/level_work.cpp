@@ -1,0 +1,150 @@
+#include "core/level_work.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace mc::level {
+
+std::vector<uint32_t> current_leaves(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  std::vector<uint32_t> out;
+  for (uint32_t c : cells) cx.leaves(c, out);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+AnalysisContext make_context(const Preprocessed& pre, const DecomposeParams& p, double level) {
+  AnalysisContext ctx;
+  ctx.dec = &p;
+  ctx.dist = pre.dist;
+  ctx.angle_rad = pre.angle_rad;
+  const Vec3 ext = pre.box.hi - pre.box.lo;
+  ctx.a_diag = std::max(ext.z * std::sqrt(ext.x * ext.x + ext.y * ext.y), 1e-12);
+  ctx.level = level;
+  ctx.box = pre.box;
+  return ctx;
+}
+
+PreparedPart refine(Preprocessed& pre, const LevelPart& w, const AnalysisContext& ctx) {
+  CellComplex& cx = *pre.complex;
+  PlaneRegistry& reg = *pre.planes;
+  PreparedPart pr;
+  CellSpace coarse = make_space(cx, w.cells);
+  const PlaneResolver add = [&](const Plane& g, const std::vector<uint32_t>& pool) -> std::optional<uint32_t> {
+    return reg.add_snapped(g, pool, ctx.angle_rad, ctx.dist, ctx.box, PlaneOrigin::Candidate);
+  };
+  PartInfo info = analyze_part(coarse, coarse.all(), ctx, add);
+  if (info.e_sig == 0 || info.candidates.empty()) {
+    pr.space = std::move(coarse);
+    pr.root = std::move(info);
+    return pr;
+  }
+  std::vector<uint32_t> cells = w.cells;
+  // A candidate passing a hair (δ/10) from a cell vertex without going through it would make
+  // vertices that collapse when the output is quantised (invalid solids): that cell is left
+  // whole, and a cut along the plane follows the cell's boundary there instead (the parts stay
+  // unions of cells, hence closed). Same rule as in carving.
+  const double hair = 0.1 * ctx.dist;
+  auto hair_close = [&](uint32_t c, uint32_t plane) {
+    const Plane& pl = reg[plane];
+    for (uint32_t v : cx.cell_vertices(c)) {
+      const double s = std::abs(pl.signed_distance(cx.point(v)));
+      if (s < hair && cx.vertex_side(v, plane) != 0) return true;
+    }
+    return false;
+  };
+  for (uint32_t plane : info.candidates) {
+    std::vector<uint32_t> next;
+    for (uint32_t c : cells) {
+      if (hair_close(c, plane)) {
+        next.push_back(c);
+        continue;
+      }
+      if (auto r = cx.split(c, plane)) {
+        next.push_back(r->neg);
+        next.push_back(r->pos);
+      } else {
+        next.push_back(c);
+      }
+    }
+    cells = std::move(next);
+  }
+  std::sort(cells.begin(), cells.end());
+  pr.space.cells = std::move(cells);
+  pr.input.pool = std::move(info.candidates);
+  pr.search = true;  // until finish() decides
+  return pr;
+}
+
+// The refined space and the cells on each candidate's positive side (exact predicates: one
+// thread per complex).
+void finish_space(const Preprocessed& pre, PreparedPart& pr, const AnalysisContext& ctx) {
+  if (!pr.search) return;
+  const CellComplex& cx = *pre.complex;
+  pr.space = make_space(cx, std::vector<uint32_t>(pr.space.cells));
+  const std::vector<uint32_t>& cells = pr.space.cells;
+  for (uint32_t plane : pr.input.pool) {
+    Bits pos(pr.space.words(), 0);
+    for (uint32_t i = 0; i < cells.size(); ++i)
+      if (cx.cell_side(cells[i], plane) > 0) set_bit(pos, i);
+    pr.input.positive.push_back(std::move(pos));
+  }
+  pr.input.ctx = ctx;
+}
+
+// The search's root: the refined space analysed (reads only; several at once are fine).
+void finish_root(const Preprocessed& pre, PreparedPart& pr, const AnalysisContext& ctx) {
+  if (!pr.search) return;
+  const PlaneRegistry& reg = *pre.planes;
+  const auto& pool = pr.input.pool;
+  const PlaneResolver lookup = [&](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
+    for (uint32_t id : pool)
+      if (same_plane_in_box(g, reg[id], ctx.angle_rad, ctx.dist, ctx.box)) return id;
+    return std::nullopt;
+  };
+  pr.root = analyze_part(pr.space, pr.space.all(), ctx, lookup);
+  pr.search = pr.root.e_sig > 0 && !pr.root.candidates.empty();
+}
+
+void finish(const Preprocessed& pre, PreparedPart& pr, const AnalysisContext& ctx) {
+  finish_space(pre, pr, ctx);
+  finish_root(pre, pr, ctx);
+}
+
+PreparedPart prepare(Preprocessed& pre, const LevelPart& w, const AnalysisContext& ctx) {
+  PreparedPart pr = refine(pre, w, ctx);
+  finish(pre, pr, ctx);
+  return pr;
+}
+
+LevelSpace::LevelSpace(const CellComplex& cx, const std::vector<LevelPart>& work) {
+  std::vector<uint32_t> all;
+  for (const LevelPart& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
+  std::sort(all.begin(), all.end());
+  space = make_space(cx, all);
+  for (uint32_t i = 0; i < all.size(); ++i) local[all[i]] = i;
+}
+
+Bits LevelSpace::bits(const LevelPart& w) const {
+  Bits b(space.words(), 0);
+  for (uint32_t c : w.cells) set_bit(b, local.at(c));
+  return b;
+}
+
+const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+
+std::vector<PartInfo> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<LevelPart>& work,
+                                    const AnalysisContext& ctx) {
+  std::vector<PartInfo> info(work.size());
+  tbb::parallel_for(size_t(0), work.size(), [&](size_t i) { info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes); });
+  return info;
+}
+
+}  // namespace mc::level

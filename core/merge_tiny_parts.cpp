@@ -1,0 +1,84 @@
+#include "core/level_passes.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "core/hull.hpp"
+
+namespace mc::level {
+
+// Merges parts smaller than v_min into a neighbour (docs/algorithm.md §14.2), smallest first;
+// parts without a neighbour they can join stay.
+void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min) {
+  for (int guard = 0; guard < 10000; ++guard) {
+    std::unordered_map<uint32_t, uint32_t> owner;
+    std::vector<double> vol(parts.size(), 0);
+    for (uint32_t i = 0; i < parts.size(); ++i)
+      for (uint32_t c : parts[i].cells) {
+        owner[c] = i;
+        vol[i] += cx.cell_volume(c);
+      }
+    int victim = -1;
+    for (uint32_t i = 0; i < parts.size(); ++i)
+      if (vol[i] < v_min && (victim < 0 || vol[i] < vol[victim])) victim = static_cast<int>(i);
+    if (victim < 0) return;
+    std::map<uint32_t, double> shared;
+    for (uint32_t c : parts[victim].cells)
+      for (uint32_t f : cx.cell(c).facets) {
+        const uint32_t o = cx.other_side(f, c);
+        auto it = o == CellComplex::kNone ? owner.end() : owner.find(o);
+        if (it != owner.end() && it->second != static_cast<uint32_t>(victim)) shared[it->second] += cx.facet_area(f);
+      }
+    if (shared.empty()) {
+      v_min = std::min(v_min, vol[victim]);  // isolated: keep it, look at larger ones only
+      continue;
+    }
+    // Among the neighbours whose union with the victim stays 2-manifold, the one whose convex
+    // hull grows least; then the largest shared area (the research code's rule). A sliver can be
+    // long: merged into the neighbour it shares most area with, it can take a convex box's
+    // convexity far down (docs/design.md, "Tiny parts merge where the hull grows least").
+    auto hull_of = [&](const std::vector<uint32_t>& cells) {
+      std::vector<uint32_t> ids;  // each vertex once (cells share them)
+      for (uint32_t c : cells)
+        for (uint32_t v : cx.cell_vertices(c)) ids.push_back(v);
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      std::vector<Vec3> pts;
+      pts.reserve(ids.size());
+      for (uint32_t v : ids) pts.push_back(cx.point(v));
+      return convex_hull(pts).volume;
+    };
+    const double tol = 1e-9 * std::max(1.0, v_min);
+    int target = -1;
+    double best_growth = 0, best_area = 0;
+    for (const auto& [p, area] : shared) {
+      std::vector<uint32_t> merged = parts[p].cells;
+      merged.insert(merged.end(), parts[victim].cells.begin(), parts[victim].cells.end());
+      if (has_pinch_edge(cx, merged)) continue;
+      const double growth = hull_of(merged) - hull_of(parts[p].cells) - vol[victim];
+      if (target < 0 || growth < best_growth - tol || (growth <= best_growth + tol && area > best_area)) {
+        target = static_cast<int>(p);
+        best_growth = growth;
+        best_area = area;
+      }
+    }
+    if (target < 0) {
+      v_min = std::min(v_min, vol[victim]);  // no valid merge: keep it
+      continue;
+    }
+    auto& dst = parts[target].cells;
+    dst.insert(dst.end(), parts[victim].cells.begin(), parts[victim].cells.end());
+    std::sort(dst.begin(), dst.end());
+    parts.erase(parts.begin() + victim);
+  }
+}
+
+}  // namespace mc::level

@@ -1,0 +1,188 @@
+#include "core/level_passes.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "core/search.hpp"
+
+namespace mc::level {
+
+// Re-searches the boundary between neighbouring parts of the previous level (opt-in,
+// decompose.revisit_boundaries). Each part of a level is refined on its own, so a boundary chosen
+// at a coarser level is final: a rooftop unit cut there into its upper box and an L-shaped rest
+// needs two pieces for the rest, where one different cut gives two convex parts for the whole
+// unit (sample11: 16 parts -> 13). For every pair of neighbouring previous parts, the pieces of
+// this level along their common boundary (three or more, connected) are searched again as one
+// part with the `revisit_candidates` heaviest candidate planes; the result replaces them when it
+// has no more parts, no more significant concave lines, and lowers the level's cost (with the
+// whole-building normalisers, docs/algorithm.md §11.3, as in merge_convex_neighbours). Each
+// union is searched right after its preparation; then the results are taken greedily by
+// decrease over disjoint piece sets, ties by pair order, so the outcome does not depend on the
+// thread count.
+// Cost: preparing each union (refining its cells by its candidates) and its search, and the
+// refinement of a rejected union stays in the complex. 3-piece unions are most of the work and
+// few are improved, so the gain in parts is small for its time (docs/algorithm.md §14.1,
+// docs/design.md). Hence off by default.
+void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<LevelPart> prev, std::vector<LevelPart>& work,
+                        const AnalysisContext& ctx, const Objective& obj, Clock::time_point deadline,
+                        LevelResult& level) {
+  CellComplex& cx = *pre.complex;
+  if (prev.size() < 2 || work.size() < 3) return;
+  DecomposeParams rp = p;
+  rp.max_candidates = p.revisit_candidates;
+  AnalysisContext rctx = ctx;
+  rctx.dec = &rp;
+  for (LevelPart& w : prev) w.cells = current_leaves(cx, w.cells);
+  for (LevelPart& w : work) w.cells = current_leaves(cx, w.cells);
+  std::unordered_map<uint32_t, uint32_t> prev_of, work_of;
+  for (uint32_t i = 0; i < prev.size(); ++i)
+    for (uint32_t c : prev[i].cells) prev_of[c] = i;
+  for (uint32_t i = 0; i < work.size(); ++i)
+    for (uint32_t c : work[i].cells) work_of[c] = i;
+  // The previous part a piece lies in (-1: it straddles two, after a merge), and the pieces of each.
+  std::vector<int64_t> home(work.size(), -1);
+  std::vector<std::vector<uint32_t>> pieces(prev.size());
+  for (uint32_t w = 0; w < work.size(); ++w) {
+    auto it = prev_of.find(work[w].cells.front());
+    if (it == prev_of.end()) continue;
+    const uint32_t h = it->second;
+    bool inside = true;
+    for (uint32_t c : work[w].cells) {
+      auto jt = prev_of.find(c);
+      inside &= jt != prev_of.end() && jt->second == h;
+    }
+    if (inside) {
+      home[w] = h;
+      pieces[h].push_back(w);
+    }
+  }
+  struct Candidate {
+    int component = 0;
+    std::vector<uint32_t> old_pieces;
+    double old_delta = 0, old_e = 0;
+    int old_sig = 0;
+    PreparedPart pr;
+    SearchResult sr;
+  };
+  std::vector<Candidate> cands;
+  // A previous part whose cells are not all in clean pieces (a merge crossed it) is left alone.
+  std::vector<bool> clean(prev.size());
+  for (uint32_t i = 0; i < prev.size(); ++i) {
+    size_t covered = 0;
+    for (uint32_t w : pieces[i]) covered += work[w].cells.size();
+    clean[i] = covered == prev[i].cells.size();
+  }
+  // Pieces sharing a facet, and the pieces' share of the level's cost (analysed once each, when
+  // a union first needs it).
+  std::vector<std::vector<uint32_t>> touches(work.size());
+  for (uint32_t w = 0; w < work.size(); ++w) touches[w] = neighbour_owners(cx, work[w].cells, w, lookup_in(work_of));
+  std::vector<std::optional<PartInfo>> piece_info(work.size());
+  auto info_of = [&](uint32_t w) -> const PartInfo& {
+    if (!piece_info[w]) {
+      const CellSpace space = make_space(cx, current_leaves(cx, work[w].cells));
+      piece_info[w] = analyze_part(space, space.all(), ctx, kNoNewPlanes);
+    }
+    return *piece_info[w];
+  };
+  // Only the pieces along the boundary of a and b are searched again: that boundary is what a
+  // joint search can move, and the union stays small. Empty unless three or more, connected.
+  auto border_of = [&](uint32_t a, uint32_t b) {
+    std::vector<uint32_t> border;
+    for (const auto& side : {std::make_pair(a, b), std::make_pair(b, a)}) {
+      const int64_t other = side.second;  // (clang cannot capture a structured binding)
+      for (uint32_t w : pieces[side.first])
+        if (std::any_of(touches[w].begin(), touches[w].end(), [&](uint32_t t) { return home[t] == other; }))
+          border.push_back(w);
+    }
+    if (border.size() < 3) return std::vector<uint32_t>{};
+    std::set<uint32_t> seen{border.front()};
+    std::vector<uint32_t> stack{border.front()};
+    while (!stack.empty()) {
+      const uint32_t w = stack.back();
+      stack.pop_back();
+      for (uint32_t t : touches[w])
+        if (std::find(border.begin(), border.end(), t) != border.end() && seen.insert(t).second) stack.push_back(t);
+    }
+    return seen.size() == border.size() ? border : std::vector<uint32_t>{};
+  };
+  for (uint32_t a = 0; a < prev.size() && Clock::now() <= deadline; ++a)
+    for (uint32_t b : neighbour_owners(cx, prev[a].cells, a, lookup_in(prev_of))) {
+      if (b < a || prev[b].component != prev[a].component || !clean[a] || !clean[b]) continue;
+      const std::vector<uint32_t> border = border_of(a, b);
+      if (border.empty()) continue;
+      Candidate cd;
+      cd.component = prev[a].component;
+      cd.old_pieces = border;
+      LevelPart u{{}, cd.component};
+      for (uint32_t w : border) {
+        const PartInfo& info = info_of(w);
+        cd.old_delta += info.delta;
+        cd.old_e += info.e_all;
+        cd.old_sig += info.e_sig;
+        // Earlier candidates' refinement may have split cells: work on the current leaves.
+        const std::vector<uint32_t> leaves = current_leaves(cx, work[w].cells);
+        u.cells.insert(u.cells.end(), leaves.begin(), leaves.end());
+      }
+      std::sort(u.cells.begin(), u.cells.end());
+      cd.pr = prepare(pre, u, rctx);
+      if (!cd.pr.search) continue;
+      cd.pr.input.deadline = deadline;
+      cd.pr.input.space = &cd.pr.space;
+      // Searched at once: a later union's refinement may split these cells, and their facets then
+      // face the children (a search on them would see wrong orientations). Its parts stay valid as
+      // regions (read back through the current leaves).
+      cd.sr = search(cd.pr.input, cd.pr.root);
+      cd.pr.input.positive.clear();
+      cands.push_back(std::move(cd));
+    }
+  std::vector<std::pair<double, size_t>> gains;
+  for (size_t i = 0; i < cands.size(); ++i) {
+    const Candidate& cd = cands[i];
+    level.nodes_expanded += cd.sr.expanded;
+    if (cd.sr.deadline_hit || cd.sr.parts.empty() || cd.sr.parts.size() > cd.old_pieces.size()) continue;
+    double sum_delta = 0, sum_e = 0;
+    int sum_sig = 0;
+    for (const PartInfo& part : cd.sr.parts) {
+      sum_delta += part.delta;
+      sum_e += part.e_all;
+      sum_sig += part.e_sig;
+    }
+    // Never trade significant concave lines for fewer parts (a root the search could not cut).
+    if (sum_sig > cd.old_sig) continue;
+    const double dn = static_cast<double>(cd.sr.parts.size()) - static_cast<double>(cd.old_pieces.size());
+    const double gain = obj.change(dn, sum_delta - cd.old_delta, sum_e - cd.old_e);
+    if (gain < -1e-9) gains.emplace_back(gain, i);
+  }
+  std::sort(gains.begin(), gains.end());
+  std::vector<bool> removed(work.size(), false);
+  std::vector<LevelPart> added;
+  for (const auto& [gain, i] : gains) {
+    const Candidate& cd = cands[i];
+    if (std::any_of(cd.old_pieces.begin(), cd.old_pieces.end(), [&](uint32_t w) { return removed[w]; })) continue;
+    for (uint32_t w : cd.old_pieces) removed[w] = true;
+    for (const PartInfo& part : cd.sr.parts) {
+      LevelPart nw{{}, cd.component};
+      for (uint32_t k = 0; k < cd.pr.space.cells.size(); ++k)
+        if (test_bit(part.bits, k)) nw.cells.push_back(cd.pr.space.cells[k]);
+      added.push_back(std::move(nw));
+    }
+  }
+  for (LevelPart& w : work) w.cells = current_leaves(cx, w.cells);
+  for (LevelPart& w : added) w.cells = current_leaves(cx, w.cells);
+  if (added.empty()) return;
+  std::vector<LevelPart> next;
+  for (uint32_t w = 0; w < work.size(); ++w)
+    if (!removed[w]) next.push_back(std::move(work[w]));
+  for (LevelPart& w : added) next.push_back(std::move(w));
+  work = std::move(next);
+}
+
+}  // namespace mc::level
