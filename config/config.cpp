@@ -20,8 +20,25 @@ namespace {
 using config_detail::AutoDouble;
 using config_detail::Field;
 
-// Names accepted at the top level besides the sections and the Params fields.
-const char* const kRunKeys[] = {"lod", "output_levels", "in_flight", "log_level"};
+// Names accepted at the top level besides the sections and the Params fields (config/run_config.hpp),
+// in lod.yaml's order, with their help.
+struct RunKey {
+  const char* name;
+  const char* help;
+};
+const RunKey kRunKeys[] = {
+    {"in_flight", "max buildings in flight, and how far ahead the largest is started first (bounds memory); auto = "
+                  "max(16, 8 x threads)"},
+    {"lod", "input LoD to decompose: highest, or e.g. \"2.2\""},
+    {"output_levels", "levels written as BuildingParts: all, or values from decompose.levels"},
+    {"log_level", "stderr messages: trace, debug, info (summary), warn (input problems), error, critical or off"},
+};
+// The sections, in lod.yaml's order, with their help.
+const RunKey kSections[] = {
+    {"preprocess", ""},
+    {"decompose", ""},
+    {"massing", "part roles and building massing features (docs/massing.md)"},
+};
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -110,7 +127,7 @@ class Loader {
     std::vector<std::string> known = {"preprocess", "decompose", "massing"};
     for (const auto& f : fields)
       if (!*f.section) known.push_back(f.name);
-    for (const char* k : kRunKeys) known.push_back(k);
+    for (const RunKey& k : kRunKeys) known.push_back(k.name);
 
     each_key(root, "", [&](const std::string& name, const std::string& path, const YAML::Node& key,
                            const YAML::Node& value) {
@@ -303,6 +320,60 @@ nlohmann::json effective_config_json(const Params& params, const RunConfig& run)
   j["in_flight"] = run.in_flight > 0 ? nlohmann::json(run.in_flight) : nlohmann::json("auto");
   j["log_level"] = run.log_level;
   return j;
+}
+
+namespace {
+
+// Shortest text that reads back as the same double, in fixed notation unless that is long.
+std::string yaml_number(double v) {
+  char buf[400];
+  auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
+  if (r.ec != std::errc() || r.ptr - buf > 12) r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::string yaml_value(const nlohmann::json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_float()) return yaml_number(v.get<double>());
+  if (v.is_array()) {
+    std::string out = "[";
+    for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + yaml_value(v[i]);
+    return out + "]";
+  }
+  return v.dump();
+}
+
+// `key: value` with its help as a comment from column 31 (at least two spaces before it).
+void yaml_line(std::ostringstream& out, const std::string& indent, const std::string& key, const std::string& value,
+               const std::string& help) {
+  std::string line = indent + key + ":" + (value.empty() ? "" : " " + value);
+  if (!help.empty()) line += std::string(line.size() + 2 < 31 ? 31 - line.size() : 2, ' ') + "# " + help;
+  out << line << "\n";
+}
+
+}  // namespace
+
+std::string config_yaml(const Params& params, const RunConfig& run) {
+  const nlohmann::json j = effective_config_json(params, run);
+  Params copy = params;  // fields_of needs a mutable object; nothing is written through it
+  const auto fields = config_detail::fields_of(copy);
+  std::ostringstream out;
+  out << "# morphcut-city configuration: every key with its default. Copy it and change what you need;\n"
+         "# keys you leave out keep these defaults, unknown keys are rejected. Units: model units (metres\n"
+         "# for 3D BAG), degrees for angles. Reference: docs/config.md. Printed by\n"
+         "# `morphcut-city --print-config` from the key table (config/fields.cpp).\n";
+  for (const RunKey& section : kSections) {
+    out << "\n";
+    yaml_line(out, "", section.name, "", section.help);
+    for (const auto& f : fields)
+      if (f.section == std::string(section.name)) yaml_line(out, "  ", f.name, yaml_value(j[f.section][f.name]), f.help);
+  }
+  out << "\n";
+  for (const auto& f : fields)
+    if (!*f.section) yaml_line(out, "", f.name, yaml_value(j[f.name]), f.help);
+  for (const RunKey& k : kRunKeys) yaml_line(out, "", k.name, yaml_value(j[k.name]), k.help);
+  return out.str();
 }
 
 }  // namespace mc

@@ -32,4 +32,7 @@ LoadedConfig load_config_string(const std::string& yaml, const std::string& sour
 // The configuration in the YAML layout (JSON is YAML, so this loads back to the same values).
 nlohmann::json effective_config_json(const Params& params, const RunConfig& run);
 
+// The configuration as a YAML file with every key's help (config/lod.yaml is this for the defaults).
+std::string config_yaml(const Params& params, const RunConfig& run);
+
 }  // namespace mc

@@ -1,5 +1,6 @@
-// The table of YAML keys that map one-to-one onto Params fields. Loader, JSON echo and the
-// lod.yaml test all walk this one table, so a new Params field needs one line here.
+// The table of YAML keys that map one-to-one onto Params fields, with the values each accepts and
+// its help. Loader, validation, JSON echo, --print-config and config/lod.yaml (printed from it)
+// all walk this one table, so a new Params field needs one entry here.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -18,10 +19,31 @@ struct AutoDouble {
 using FieldPtr = std::variant<double*, AutoDouble, int*, int64_t*, uint64_t*, bool*, std::string*,
                               std::vector<double>*>;
 
+// The values a key accepts beyond its type (checked by validate(); shown by --print-config).
+struct Range {
+  enum Kind { Any, Finite, Interval, OneOf } kind = Any;
+  double lo = -1e308, hi = 1e308;  // Interval: bounds (an infinite bound is not shown)
+  bool lo_open = false, hi_open = false;
+  const char* note = "";           // appended to the rule, e.g. " (0 = all)"
+  std::vector<const char*> choices;  // OneOf
+  std::string text() const;        // "(0, 90)", ">= 1 (0 = all)", "one of z, y, auto"; "" for Any
+};
+inline Range any() { return {}; }
+inline Range finite() { return {Range::Finite}; }
+inline Range in(double lo, double hi, bool lo_open, bool hi_open, const char* note = "") {
+  return {Range::Interval, lo, hi, lo_open, hi_open, note, {}};
+}
+inline Range at_least(double lo, const char* note = "") { return {Range::Interval, lo, 1e308, false, false, note, {}}; }
+inline Range one_of(std::vector<const char*> choices) { return {Range::OneOf, -1e308, 1e308, false, false, "", std::move(choices)}; }
+
+// One key: where it lives, what it accepts and what it means. Its default is the Params member's
+// initialiser (core/params.hpp); config/lod.yaml is this table printed (a test compares them).
 struct Field {
-  const char* section;  // "preprocess", "decompose" or "" for top level
+  const char* section;  // "preprocess", "decompose", "massing" or "" for top level
   const char* name;
   FieldPtr ptr;
+  Range range;
+  const char* help;
   std::string path() const { return *section ? std::string(section) + "." + name : name; }
 };
 

@@ -99,8 +99,8 @@ int main(int argc, char** argv) {
   int threads = -1;
   double timeout = -1;
   bool quiet = false, no_report = false, no_summary = false, no_html = false;
-  app.add_option("INPUT", input, "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), .gml/.xml[.gz] (CityGML 1.0/2.0/3.0 buildings), or - for CityJSONSeq on stdin")
-      ->required();
+  // Required unless --print-config (checked after parsing).
+  CLI::Option* input_opt = app.add_option("INPUT", input, "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), .gml/.xml[.gz] (CityGML 1.0/2.0/3.0 buildings), or - for CityJSONSeq on stdin");
   app.add_option("--config,-c", config_path, "YAML configuration (see config/lod.yaml; unknown keys are rejected)")
       ->check(CLI::ExistingFile);
   app.add_option("-o,--output", output, "output CityJSON; .jsonl writes CityJSONSeq (default: <stem>.morphcut.city.json[l])");
@@ -123,6 +123,10 @@ int main(int argc, char** argv) {
   app.add_option("--html", html, "HTML page of the run (default: the report's name with .report.json -> .html)");
   app.add_flag("--no-html", no_html, "do not write the HTML page");
   app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
+  bool print_config = false;
+  app.add_flag("--print-config", print_config,
+               "print the effective configuration (defaults, then --config, then these options) as YAML with "
+               "every key's help, and exit; with no --config it is config/lod.yaml");
   bool no_fast_path = false;
   app.add_flag("--no-fast-path", no_fast_path,
                "label every building by the full vote, also valid solids (config preprocess.fast_path: false; "
@@ -130,6 +134,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", MC_VERSION);
   app.footer(kFooter);
   if (const auto code = mc::pipeline::parse_or_exit(app, argc, argv)) return *code;
+  if (!print_config && input_opt->count() == 0) {
+    app.exit(CLI::RequiredError(input_opt->get_name()));
+    return mc::pipeline::kExitUsage;
+  }
 
   try {
     mc::LoadedConfig cfg;
@@ -138,6 +146,10 @@ int main(int argc, char** argv) {
     if (timeout >= 0) cfg.params.timeout_s = timeout;
     if (!lod.empty()) cfg.run.lod = lod;
     if (no_fast_path) cfg.params.pre.fast_path = false;
+    if (print_config) {
+      std::fputs(mc::config_yaml(cfg.params, cfg.run).c_str(), stdout);
+      return 0;
+    }
 
     const bool sequence = input == "-" || input.ends_with(".jsonl");
     mc::pipeline::RunOptions opt;

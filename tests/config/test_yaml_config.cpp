@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "config/config.hpp"
 
@@ -27,6 +29,24 @@ TEST(YamlConfig, LodYamlEqualsTheDefaults) {
   EXPECT_EQ(c.params.dec.max_children, d.dec.max_children);
   EXPECT_EQ(c.run.in_flight, 0);
   EXPECT_TRUE(c.run.output_levels.empty());
+}
+
+// lod.yaml is the key table printed (config/fields.cpp: key, type, default, range, help):
+// regenerate it with `morphcut-city --print-config > config/lod.yaml` after changing the table.
+TEST(YamlConfig, LodYamlIsTheKeyTablePrinted) {
+  std::ifstream in(kLodYaml);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), mc::config_yaml(mc::Params{}, mc::RunConfig{}));
+}
+
+// Each key's range comes from the table, and the printed file loads back to the same values.
+TEST(YamlConfig, RangesComeFromTheTableAndThePrintedConfigLoadsBack) {
+  auto c = mc::load_config_string("decompose:\n  sigma: 1.5\n  levels: [0.2, 0.02]\npreprocess:\n  cell_size: 0.25\n");
+  const auto back = mc::load_config_string(mc::config_yaml(c.params, c.run));
+  EXPECT_EQ(mc::effective_config_json(back.params, back.run), mc::effective_config_json(c.params, c.run));
+  EXPECT_THROW(mc::load_config_string("massing:\n  roof_max_fill: 1.5\n"), mc::ConfigError);
+  EXPECT_THROW(mc::load_config_string("preprocess:\n  oracle: magic\n"), mc::ConfigError);
 }
 
 // lod.yaml is the documentation of every key: it must list exactly the keys the loader knows.

@@ -25,6 +25,21 @@ TEST(Cli, HelpIsCompleteAndExitsZero) {
     EXPECT_NE(r.output.find(s), std::string::npos) << "--help does not mention " << s;
 }
 
+// --print-config prints the key table as YAML: with no --config it is config/lod.yaml, and
+// --config and the options override it.
+TEST(Cli, PrintConfigIsLodYamlAndShowsOverrides) {
+  MC_REQUIRE_CLI();
+  TempDir dir("cli_print_config");
+  const ProcessResult d = run_command(cli_path() + " --print-config 2>/dev/null");
+  EXPECT_EQ(d.exit_code, 0);
+  EXPECT_EQ(d.output, mc::test::slurp(std::string(MC_SOURCE_DIR) + "/config/lod.yaml"));
+  std::ofstream(dir / "c.yaml") << "decompose:\n  sigma: 1.5\n";
+  const ProcessResult c = run_command(cli_path() + " --print-config --no-fast-path -c " + (dir / "c.yaml"));
+  EXPECT_EQ(c.exit_code, 0);
+  EXPECT_NE(c.output.find("  sigma: 1.5 "), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("  fast_path: false "), std::string::npos) << c.output;
+}
+
 TEST(Cli, UsageConfigAndReadErrorsExitTwo) {
   MC_REQUIRE_CLI();
   TempDir dir("cli_errors");
