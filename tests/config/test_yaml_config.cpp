@@ -49,6 +49,26 @@ TEST(YamlConfig, RangesComeFromTheTableAndThePrintedConfigLoadsBack) {
   EXPECT_THROW(mc::load_config_string("preprocess:\n  oracle: magic\n"), mc::ConfigError);
 }
 
+// docs/config.md's reference tables list every key of the printed configuration, per section.
+TEST(YamlConfig, ConfigReferenceDocumentsEveryKey) {
+  std::ifstream in(std::string(MC_SOURCE_DIR) + "/docs/config.md");
+  ASSERT_TRUE(in.good());
+  std::set<std::string> documented;
+  std::string section, line;
+  while (std::getline(in, line)) {
+    if (line.rfind("## `", 0) == 0) section = line.substr(4, line.find(':') - 4) + ".";
+    else if (line.rfind("## ", 0) == 0) section = line.rfind("## Top level", 0) == 0 ? "" : "-";
+    if (section != "-" && line.rfind("| `", 0) == 0) documented.insert(section + line.substr(3, line.find('`', 3) - 3));
+  }
+  const nlohmann::json j = mc::effective_config_json(mc::Params{}, mc::RunConfig{});
+  for (const auto& [k, v] : j.items()) {
+    if (v.is_object())
+      for (const auto& [k2, v2] : v.items()) EXPECT_TRUE(documented.count(k + "." + k2)) << k << "." << k2 << " is not in docs/config.md";
+    else
+      EXPECT_TRUE(documented.count(k)) << k << " is not in docs/config.md";
+  }
+}
+
 // lod.yaml is the documentation of every key: it must list exactly the keys the loader knows.
 TEST(YamlConfig, LodYamlListsEveryKey) {
   const YAML::Node root = YAML::LoadFile(kLodYaml);
