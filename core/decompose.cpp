@@ -39,9 +39,9 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
   out.parts.clear();
   out.min_convexity = 1;
   out.mean_convexity = 0;
-  const std::vector<PartInfo> infos = analyze_parts(space, ls, work, ctx);
+  const std::vector<PartAnalysis> infos = analyze_parts(space, ls, work, ctx);
   for (uint32_t i = 0; i < work.size(); ++i) {
-    const PartInfo& info = infos[i];
+    const PartAnalysis& info = infos[i];
     PartResult r;
     r.cells = work[i].cells;
     r.component = work[i].component;
@@ -83,7 +83,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     for (const LevelPart& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
     std::sort(all.begin(), all.end());
     const CellSpace space = make_space(cx, all);
-    const PartInfo r = analyze_part(space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), kNoNewPlanes);
+    const PartAnalysis r = analyze_part(space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), kNoNewPlanes);
     out.concave_edges = r.e_all;
     obj = Objective::of_root(r.e_all, r.delta, p);
   }
@@ -129,7 +129,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
           out.partial = true;
           out.reason = "deadline reached during the search at LoD " + std::to_string(level.lod);
         }
-        for (const PartInfo& part : sr.parts) {
+        for (const PartAnalysis& part : sr.parts) {
           LevelPart nw{{}, work[i].component};
           for (uint32_t k = 0; k < prepared[i].space.cells.size(); ++k)
             if (test_bit(part.bits, k)) nw.cells.push_back(prepared[i].space.cells[k]);

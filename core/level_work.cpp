@@ -40,7 +40,7 @@ PreparedPart refine(Preprocessed& pre, const LevelPart& w, const AnalysisContext
   const PlaneResolver add = [&](const Plane& g, const std::vector<uint32_t>& pool) -> std::optional<uint32_t> {
     return reg.add_snapped(g, pool, ctx.angle_rad, ctx.dist, ctx.box, PlaneOrigin::Candidate);
   };
-  PartInfo info = analyze_part(coarse, coarse.all(), ctx, add);
+  PartAnalysis info = analyze_part(coarse, coarse.all(), ctx, add);
   if (info.e_sig == 0 || info.candidates.empty()) {
     pr.space = std::move(coarse);
     pr.root = std::move(info);
@@ -140,9 +140,9 @@ Bits LevelSpace::bits(const LevelPart& w) const {
 
 const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
 
-std::vector<PartInfo> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<LevelPart>& work,
+std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<LevelPart>& work,
                                     const AnalysisContext& ctx) {
-  std::vector<PartInfo> info(work.size());
+  std::vector<PartAnalysis> info(work.size());
   tbb::parallel_for(size_t(0), work.size(), [&](size_t i) { info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes); });
   return info;
 }

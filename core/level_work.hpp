@@ -25,7 +25,7 @@ struct LevelPart {
 struct PreparedPart {
   CellSpace space;
   SearchInput input;
-  PartInfo root;
+  PartAnalysis root;
   bool search = false;
 };
 
@@ -86,14 +86,14 @@ struct LevelSpace {
 extern const PlaneResolver kNoNewPlanes;
 
 // Every part of a level analysed, in parallel (the analysis only reads the complex); in order.
-std::vector<PartInfo> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<LevelPart>& work,
+std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<LevelPart>& work,
                                     const AnalysisContext& ctx);
 
 // A part's convexity V/V_CH as reported (1 for an exactly convex part).
-inline double reported_convexity(const PartInfo& info) {
+inline double reported_convexity(const PartAnalysis& info) {
   return info.delta == 0 && !info.nearly_convex ? 1.0 : info.convexity();
 }
 // A part's term V·(V/V_CH) of the level's volume-weighted convexity.
-inline double weighted_convexity(const PartInfo& info) { return info.volume * reported_convexity(info); }
+inline double weighted_convexity(const PartAnalysis& info) { return info.volume * reported_convexity(info); }
 
 }  // namespace mc::level

@@ -28,10 +28,10 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
   const CellSpace& space = ls.space;
   const auto& local = ls.local;
   // Cost change of replacing parts a and b by their union u (|P| drops by one).
-  auto gain = [&](const PartInfo& a, const PartInfo& b, const PartInfo& u) {
+  auto gain = [&](const PartAnalysis& a, const PartAnalysis& b, const PartAnalysis& u) {
     return obj.change(-1.0, u.delta - a.delta - b.delta, u.e_all - a.e_all - b.e_all);
   };
-  std::vector<PartInfo> info = analyze_parts(space, ls, work, ctx);
+  std::vector<PartAnalysis> info = analyze_parts(space, ls, work, ctx);
   std::vector<bool> alive(work.size(), true);
   std::vector<uint32_t> owner(space.cells.size());
   auto neighbours = [&](uint32_t i) {
@@ -43,15 +43,15 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
   for (uint32_t i = 0; i < work.size(); ++i)
     for (uint32_t c : work[i].cells) owner[local.at(c)] = i;
   // Candidate merges, evaluated lazily and cached until one of the two parts changes.
-  std::map<std::pair<uint32_t, uint32_t>, std::optional<std::pair<double, PartInfo>>> cache;
-  auto evaluate = [&](uint32_t a, uint32_t b) -> const std::optional<std::pair<double, PartInfo>>& {
+  std::map<std::pair<uint32_t, uint32_t>, std::optional<std::pair<double, PartAnalysis>>> cache;
+  auto evaluate = [&](uint32_t a, uint32_t b) -> const std::optional<std::pair<double, PartAnalysis>>& {
     auto key = std::make_pair(std::min(a, b), std::max(a, b));
     auto it = cache.find(key);
     if (it != cache.end()) return it->second;
-    std::optional<std::pair<double, PartInfo>> r;
+    std::optional<std::pair<double, PartAnalysis>> r;
     Bits u = info[a].bits;
     for (size_t w = 0; w < u.size(); ++w) u[w] |= info[b].bits[w];
-    PartInfo ui = analyze_part(space, std::move(u), ctx, kNoNewPlanes);
+    PartAnalysis ui = analyze_part(space, std::move(u), ctx, kNoNewPlanes);
     const double g = gain(info[a], info[b], ui);
     if (ui.e_sig == 0 && ui.pinch_edges == 0 && g < -1e-9) r.emplace(g, std::move(ui));
     return cache.emplace(key, std::move(r)).first->second;
@@ -64,7 +64,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
       for (uint32_t b : neighbours(a))
         if (b > a && alive[b] && work[a].component == work[b].component && !cache.count({a, b})) todo.emplace_back(a, b);
     }
-    std::vector<PartInfo> unions(todo.size());
+    std::vector<PartAnalysis> unions(todo.size());
     tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
       Bits u = info[todo[i].first].bits;
       for (size_t w = 0; w < u.size(); ++w) u[w] |= info[todo[i].second].bits[w];
@@ -72,7 +72,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     });
     for (size_t i = 0; i < todo.size(); ++i) {
       const auto [a, b] = todo[i];
-      std::optional<std::pair<double, PartInfo>> r;
+      std::optional<std::pair<double, PartAnalysis>> r;
       const double g = gain(info[a], info[b], unions[i]);
       if (unions[i].e_sig == 0 && unions[i].pinch_edges == 0 && g < -1e-9) r.emplace(g, std::move(unions[i]));
       cache.emplace(std::make_pair(a, b), std::move(r));
@@ -92,7 +92,7 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     }
     if (best == 0) break;
     const auto [a, b] = pick;
-    PartInfo merged = cache[{a, b}]->second;
+    PartAnalysis merged = cache[{a, b}]->second;
     work[a].cells.insert(work[a].cells.end(), work[b].cells.begin(), work[b].cells.end());
     std::sort(work[a].cells.begin(), work[a].cells.end());
     for (uint32_t c : work[b].cells) owner[local.at(c)] = a;

@@ -281,11 +281,11 @@ double exit_distance(const std::vector<Plane>& hull, const Vec3& s, const Vec3& 
 
 }  // namespace
 
-PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve) {
+PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve) {
   const CellComplex& cx = *s.cx;
   const PlaneRegistry& reg = cx.planes();
   const DecomposeParams& dec = *ctx.dec;
-  PartInfo info;
+  PartAnalysis info;
   info.bits = std::move(bits);
   info.hash = hash_bits(info.bits);
 

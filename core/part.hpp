@@ -65,7 +65,10 @@ struct AnalysisContext {
 // plane id: snapping to an existing plane, registering a new one, or rejecting it (nullopt).
 using PlaneResolver = std::function<std::optional<uint32_t>(const Plane& generated, const std::vector<uint32_t>& pool)>;
 
-struct PartInfo {
+// A part as the analysis sees it (docs/algorithm.md §9–§10): its cells in a space, volumes, hull,
+// concave lines and candidate cutting planes. The other stages' part types: LevelPart and
+// PreparedPart (core/level_work.hpp), PartResult (core/decompose.hpp).
+struct PartAnalysis {
   Bits bits;
   uint64_t hash = 0;
   size_t cell_count = 0;
@@ -81,7 +84,7 @@ struct PartInfo {
   double convexity() const { return hull_volume > 0 ? volume / hull_volume : 0.0; }
 };
 
-PartInfo analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve);
+PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve);
 
 // Whether the boundary of a set of cells has an edge used by more than two boundary facets, or
 // a vertex where two separate fans of boundary facets meet.

@@ -84,8 +84,8 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
   // a union first needs it).
   std::vector<std::vector<uint32_t>> touches(work.size());
   for (uint32_t w = 0; w < work.size(); ++w) touches[w] = neighbour_owners(cx, work[w].cells, w, lookup_in(work_of));
-  std::vector<std::optional<PartInfo>> piece_info(work.size());
-  auto info_of = [&](uint32_t w) -> const PartInfo& {
+  std::vector<std::optional<PartAnalysis>> piece_info(work.size());
+  auto info_of = [&](uint32_t w) -> const PartAnalysis& {
     if (!piece_info[w]) {
       const CellSpace space = make_space(cx, current_leaves(cx, work[w].cells));
       piece_info[w] = analyze_part(space, space.all(), ctx, kNoNewPlanes);
@@ -123,7 +123,7 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
       cd.old_pieces = border;
       LevelPart u{{}, cd.component};
       for (uint32_t w : border) {
-        const PartInfo& info = info_of(w);
+        const PartAnalysis& info = info_of(w);
         cd.old_delta += info.delta;
         cd.old_e += info.e_all;
         cd.old_sig += info.e_sig;
@@ -150,7 +150,7 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
     if (cd.sr.deadline_hit || cd.sr.parts.empty() || cd.sr.parts.size() > cd.old_pieces.size()) continue;
     double sum_delta = 0, sum_e = 0;
     int sum_sig = 0;
-    for (const PartInfo& part : cd.sr.parts) {
+    for (const PartAnalysis& part : cd.sr.parts) {
       sum_delta += part.delta;
       sum_e += part.e_all;
       sum_sig += part.e_sig;
@@ -168,7 +168,7 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
     const Candidate& cd = cands[i];
     if (std::any_of(cd.old_pieces.begin(), cd.old_pieces.end(), [&](uint32_t w) { return removed[w]; })) continue;
     for (uint32_t w : cd.old_pieces) removed[w] = true;
-    for (const PartInfo& part : cd.sr.parts) {
+    for (const PartAnalysis& part : cd.sr.parts) {
       LevelPart nw{{}, cd.component};
       for (uint32_t k = 0; k < cd.pr.space.cells.size(); ++k)
         if (test_bit(part.bits, k)) nw.cells.push_back(cd.pr.space.cells[k]);

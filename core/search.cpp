@@ -23,7 +23,7 @@ struct Node {
 
 class Search {
  public:
-  Search(const SearchInput& in, const PartInfo& root) : in_(in), obj_(Objective::of_root(root.e_all, root.delta, *in.ctx.dec)) {
+  Search(const SearchInput& in, const PartAnalysis& root) : in_(in), obj_(Objective::of_root(root.e_all, root.delta, *in.ctx.dec)) {
     for (uint32_t i = 0; i < in.pool.size(); ++i) pool_index_[in.pool[i]] = i;
     intern(root);
   }
@@ -95,7 +95,7 @@ class Search {
   }
 
  private:
-  double part_cost(const PartInfo& p) const { return obj_.part_cost(p.delta, p.e_all); }
+  double part_cost(const PartAnalysis& p) const { return obj_.part_cost(p.delta, p.e_all); }
 
   static constexpr uint32_t kNew = UINT32_MAX;
 
@@ -108,7 +108,7 @@ class Search {
     return kNew;
   }
 
-  uint32_t intern(PartInfo info) {
+  uint32_t intern(PartAnalysis info) {
     auto& bucket = by_hash_[info.hash];
     for (uint32_t id : bucket)
       if (arena_[id].bits == info.bits) return id;
@@ -152,7 +152,7 @@ class Search {
     // cuts in another order; analysed once) or a newly analysed one.
     struct Piece {
       uint32_t known = kNew;
-      PartInfo info;
+      PartAnalysis info;
     };
     std::vector<std::vector<Piece>> pieces(todo.size());
     const PlaneResolver lookup = [this](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
@@ -280,7 +280,7 @@ class Search {
 
   const SearchInput& in_;
   Objective obj_;
-  std::vector<PartInfo> arena_;
+  std::vector<PartAnalysis> arena_;
   std::unordered_map<uint64_t, std::vector<uint32_t>> by_hash_;
   std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> splits_;
   std::unordered_map<uint32_t, uint32_t> pool_index_;
@@ -289,6 +289,6 @@ class Search {
 
 }  // namespace
 
-SearchResult search(const SearchInput& in, const PartInfo& root) { return Search(in, root).run(); }
+SearchResult search(const SearchInput& in, const PartAnalysis& root) { return Search(in, root).run(); }
 
 }  // namespace mc

@@ -24,13 +24,13 @@ struct SearchInput {
 };
 
 struct SearchResult {
-  std::vector<PartInfo> parts;
+  std::vector<PartAnalysis> parts;
   double cost = 0, g = 0, h = 0;
   int64_t expanded = 0;
   bool deadline_hit = false;
   bool budget_hit = false;
 };
 
-SearchResult search(const SearchInput& in, const PartInfo& root);
+SearchResult search(const SearchInput& in, const PartAnalysis& root);
 
 }  // namespace mc

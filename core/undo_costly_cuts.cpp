@@ -59,10 +59,10 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
   for (uint32_t q = 0; q < prev.size(); ++q) prevs_of[find(q)].push_back(q);
   if (std::none_of(parts_of.begin(), parts_of.end(), [](const auto& e) { return e.second.size() > 1; })) return;
   const LevelSpace ls(cx, work);
-  std::vector<PartInfo> info;
+  std::vector<PartAnalysis> info;
   double weighted = 0, volume = 0;
   info = analyze_parts(ls.space, ls, work, ctx);
-  for (const PartInfo& pi : info) {
+  for (const PartAnalysis& pi : info) {
     weighted += weighted_convexity(pi);
     volume += pi.volume;
   }
@@ -76,7 +76,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
     for (uint32_t q : qs) {
       Bits whole(ls.space.words(), 0);
       for (uint32_t c : prev_cells[q]) set_bit(whole, ls.local.at(c));
-      const PartInfo qi = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
+      const PartAnalysis qi = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
       stays_cut |= qi.pinch_edges > 0;
       stays_cut |= reported_convexity(qi) < p.uncut_convexity;
       d_delta -= qi.delta;

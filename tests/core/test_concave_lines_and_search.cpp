@@ -75,7 +75,7 @@ PlaneResolver registering(Preprocessed& pre, const AnalysisContext& ctx) {
 }
 
 // The whole singleton cell analysed at `level`.
-PartInfo analyze_cell(Preprocessed& pre, const DecomposeParams& dp, double level) {
+PartAnalysis analyze_cell(Preprocessed& pre, const DecomposeParams& dp, double level) {
   const AnalysisContext ctx = context(pre, dp, level);
   const CellSpace space = make_space(*pre.complex, pre.components[0].cells);
   return analyze_part(space, space.all(), ctx, registering(pre, ctx));
@@ -99,7 +99,7 @@ uint32_t find_plane(const Preprocessed& pre, const std::vector<uint32_t>& ids, V
 }
 
 // The vertical reflex line at input footprint corner (x, y), z 0..h; returns its index.
-size_t expect_vertical_line(const Preprocessed& pre, const PartInfo& info, double x, double y, double h,
+size_t expect_vertical_line(const Preprocessed& pre, const PartAnalysis& info, double x, double y, double h,
                             double weight) {
   const Vec3 c = at(pre, {x, y, 0});
   for (size_t i = 0; i < info.lines.size(); ++i) {
@@ -137,10 +137,10 @@ void expect_volumes(const std::vector<double>& got, const std::vector<double>& w
 // candidate, and the root analysed again on the refined space with a lookup-only resolver.
 struct SearchRoot {
   DecomposeParams dp;
-  PartInfo coarse;  // before refinement
+  PartAnalysis coarse;  // before refinement
   CellSpace space;
   SearchInput input;
-  PartInfo root;
+  PartAnalysis root;
 };
 
 void prepare_root(Preprocessed& pre, double level, SearchRoot& r) {
@@ -185,7 +185,7 @@ void prepare_root(Preprocessed& pre, double level, SearchRoot& r) {
 // The search's parts tile its root: disjoint cell sets whose union is every cell.
 void expect_tiling(const SearchRoot& r, const SearchResult& res) {
   Bits seen(r.space.words(), 0);
-  for (const PartInfo& p : res.parts)
+  for (const PartAnalysis& p : res.parts)
     for (size_t w = 0; w < seen.size(); ++w) {
       EXPECT_EQ(seen[w] & p.bits[w], 0u);
       seen[w] |= p.bits[w];
@@ -218,7 +218,7 @@ void expect_convex_parts(const LevelResult& level) {
 TEST(ConcaveLines, BoxHasNoConcaveLineAndNoCandidate) {
   Preprocessed pre = prep(test::box_building());  // 10 × 6 × 5
   const DecomposeParams dp;
-  const PartInfo info = analyze_cell(pre, dp, 0.0001);
+  const PartAnalysis info = analyze_cell(pre, dp, 0.0001);
   EXPECT_NEAR(info.volume, 300.0, 1e-6 * 300);
   EXPECT_NEAR(info.hull_volume, 300.0, 1e-6 * 300);
   EXPECT_EQ(info.delta, 0.0);  // exactly convex parts have Δ exactly 0 (§9.2)
@@ -234,7 +234,7 @@ TEST(ConcaveLines, LShapeHasOneLineAtTheInnerCornerProposingBothWallsAndTheBisec
   Preprocessed pre = prep(test::l_building());
   const DecomposeParams dp;
   const size_t planes_before = pre.planes->size();
-  const PartInfo info = analyze_cell(pre, dp, 0.1);
+  const PartAnalysis info = analyze_cell(pre, dp, 0.1);
   EXPECT_NEAR(info.volume, 570.0, 1e-6 * 570);
   EXPECT_NEAR(info.hull_volume, 717.0, 1e-6 * 717);
   EXPECT_NEAR(info.delta, 147.0, 1e-6 * 147);
@@ -260,7 +260,7 @@ TEST(ConcaveLines, LShapeCandidatesFollowWithBisectorAndCutMode) {
     Preprocessed pre = prep(test::l_building());
     DecomposeParams dp;
     dp.with_bisector = false;
-    const PartInfo info = analyze_cell(pre, dp, 0.1);
+    const PartAnalysis info = analyze_cell(pre, dp, 0.1);
     ASSERT_EQ(info.lines.size(), 1u);
     EXPECT_EQ(std::set<uint32_t>(info.candidates.begin(), info.candidates.end()),
               (std::set<uint32_t>{info.lines[0].p1, info.lines[0].p2}));
@@ -270,7 +270,7 @@ TEST(ConcaveLines, LShapeCandidatesFollowWithBisectorAndCutMode) {
     Preprocessed pre = prep(test::l_building());
     DecomposeParams dp;
     dp.cut_mode = "H";  // horizontal planes only: every candidate of a vertical corner is vertical
-    const PartInfo info = analyze_cell(pre, dp, 0.1);
+    const PartAnalysis info = analyze_cell(pre, dp, 0.1);
     EXPECT_EQ(info.e_sig, 1);
     EXPECT_TRUE(info.candidates.empty());
   }
@@ -278,7 +278,7 @@ TEST(ConcaveLines, LShapeCandidatesFollowWithBisectorAndCutMode) {
     Preprocessed pre = prep(test::l_building());
     DecomposeParams dp;
     dp.max_candidates = 1;
-    const PartInfo info = analyze_cell(pre, dp, 0.1);
+    const PartAnalysis info = analyze_cell(pre, dp, 0.1);
     ASSERT_EQ(info.candidates.size(), 1u);
     EXPECT_EQ(info.candidates[0], std::min(info.lines[0].p1, info.lines[0].p2));
   }
@@ -287,7 +287,7 @@ TEST(ConcaveLines, LShapeCandidatesFollowWithBisectorAndCutMode) {
 TEST(ConcaveLines, UShapeHasTwoLinesAndTheSharedWallIsTheHeaviestCandidate) {
   Preprocessed pre = prep(test::u_building());
   const DecomposeParams dp;
-  const PartInfo info = analyze_cell(pre, dp, 0.1);
+  const PartAnalysis info = analyze_cell(pre, dp, 0.1);
   EXPECT_NEAR(info.volume, 870.0, 1e-6 * 870);
   EXPECT_NEAR(info.delta, 210.0, 1e-6 * 210);
   ASSERT_EQ(info.lines.size(), 2u);
@@ -312,7 +312,7 @@ TEST(ConcaveLines, UShapeHasTwoLinesAndTheSharedWallIsTheHeaviestCandidate) {
 TEST(ConcaveLines, CourtyardRingHasFourLinesAtTheInnerCorners) {
   Preprocessed pre = prep(test::courtyard_building());
   const DecomposeParams dp;
-  const PartInfo info = analyze_cell(pre, dp, 0.1);
+  const PartAnalysis info = analyze_cell(pre, dp, 0.1);
   EXPECT_NEAR(info.volume, 1320.0, 1e-6 * 1320);
   EXPECT_NEAR(info.hull_volume, 1536.0, 1e-6 * 1536);
   EXPECT_NEAR(info.delta, 216.0, 1e-6 * 216);
@@ -348,7 +348,7 @@ TEST(ConcaveLines, SetbackLinesAreSignificantOnlyAtTheFinerLevel) {
   Preprocessed pre = prep(test::stepped_tower());
   const DecomposeParams dp;
   const size_t planes_before = pre.planes->size();
-  const PartInfo coarse = analyze_cell(pre, dp, 0.1);
+  const PartAnalysis coarse = analyze_cell(pre, dp, 0.1);
   EXPECT_NEAR(coarse.volume, 528.0, 1e-6 * 528);
   EXPECT_NEAR(coarse.hull_volume, 816.0, 1e-6 * 816);  // the box and a frustum 8/3 (100 + 16 + 40)
   ASSERT_EQ(coarse.lines.size(), 4u);
@@ -362,7 +362,7 @@ TEST(ConcaveLines, SetbackLinesAreSignificantOnlyAtTheFinerLevel) {
     EXPECT_NEAR(L.angle, 1.5 * M_PI, kTol);
     EXPECT_NEAR(L.weight, w, kTol * w);
   }
-  const PartInfo fine = analyze_cell(pre, dp, 0.01);
+  const PartAnalysis fine = analyze_cell(pre, dp, 0.01);
   EXPECT_EQ(fine.e_sig, 4);
   // The terrace (proposed by all four lines) first, then the four tower walls; nothing generated.
   ASSERT_EQ(fine.candidates.size(), 5u);
@@ -421,7 +421,7 @@ TEST_P(DirectSearchKnownAnswer, FindsTheConvexDecompositionTheObjectiveImplies) 
   EXPECT_EQ(res.h, 0.0);
   EXPECT_NEAR(res.cost, res.g, 1e-12);
   std::vector<double> vols;
-  for (const PartInfo& p : res.parts) {
+  for (const PartAnalysis& p : res.parts) {
     vols.push_back(p.volume);
     EXPECT_EQ(p.e_all, 0);
     EXPECT_EQ(p.delta, 0.0);
@@ -460,7 +460,7 @@ TEST(DirectSearch, BisectorOfTheUCutsOffACornerOfTheOtherProng) {
   std::vector<double> convex, concave;
   for (const Bits* side : {&pos, &neg})
     for (Bits& piece : components(r.space, *side)) {
-      const PartInfo p = analyze_part(r.space, std::move(piece), r.input.ctx, none);
+      const PartAnalysis p = analyze_part(r.space, std::move(piece), r.input.ctx, none);
       (p.e_all == 0 ? convex : concave).push_back(p.volume);
       if (p.e_all > 0) {
         EXPECT_EQ(p.e_all, 1);
@@ -481,7 +481,7 @@ TEST(DirectSearch, OptimalSearchAgreesOnTheUShape) {
   ASSERT_EQ(res.parts.size(), 3u);
   EXPECT_NEAR(res.cost, 2.0, 1e-12);
   std::vector<double> vols;
-  for (const PartInfo& p : res.parts) vols.push_back(p.volume);
+  for (const PartAnalysis& p : res.parts) vols.push_back(p.volume);
   expect_volumes(vols, {450, 210, 210});
   expect_tiling(r, res);
 }
