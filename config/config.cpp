@@ -89,7 +89,7 @@ class Loader {
     }
     if (output_levels_) out.run.output_levels = map_output_levels(*output_levels_, out.params);
     try {
-      validate(out.params, out.run);
+      check_config(out.params, out.run);
     } catch (const ConfigError& e) {
       // Add the line of the offending key when the YAML set it.
       std::string base = e.key().substr(0, e.key().find('['));

@@ -14,7 +14,7 @@
 #include "config/config_error.hpp"
 #include "config/paper_config.hpp"
 #include "config/run_config.hpp"
-#include "config/validate.hpp"
+#include "config/config_check.hpp"
 #include "core/params.hpp"
 
 namespace mc {

@@ -19,7 +19,7 @@ struct AutoDouble {
 using FieldPtr = std::variant<double*, AutoDouble, int*, int64_t*, uint64_t*, bool*, std::string*,
                               std::vector<double>*>;
 
-// The values a key accepts beyond its type (checked by validate(); shown by --print-config).
+// The values a key accepts beyond its type (checked by check_config(); shown by --print-config).
 struct Range {
   enum Kind { Any, Finite, Interval, OneOf } kind = Any;
   double lo = -1e308, hi = 1e308;  // Interval: bounds (an infinite bound is not shown)

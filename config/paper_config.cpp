@@ -8,7 +8,7 @@
 
 #include "config/config_error.hpp"
 #include "config/run_config.hpp"
-#include "config/validate.hpp"
+#include "config/config_check.hpp"
 
 namespace mc {
 namespace {
@@ -161,7 +161,7 @@ Params load_paper_config(const std::string& path, std::vector<std::string>* warn
     if (j.contains(k) && !(r.number(k) > 0)) r.fail(k, "must be > 0");
 
   try {
-    validate(p, RunConfig{});
+    check_config(p, RunConfig{});
   } catch (const ConfigError& e) {
     const std::string base = e.key().substr(0, e.key().find('['));
     for (const auto& [paper, ours] : kPaperToOurs)

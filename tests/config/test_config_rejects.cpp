@@ -85,17 +85,17 @@ TEST(ConfigError, CarriesKeyAndReason) {
   }
 }
 
-TEST(Validate, RejectsProgrammaticValues) {
+TEST(CheckConfig, RejectsProgrammaticValues) {
   mc::Params p;
   mc::RunConfig r;
-  EXPECT_NO_THROW(mc::validate(p, r));
+  EXPECT_NO_THROW(mc::check_config(p, r));
   r.output_levels = {4};  // there are 4 levels: 0..3
-  EXPECT_THROW(mc::validate(p, r), mc::ConfigError);
+  EXPECT_THROW(mc::check_config(p, r), mc::ConfigError);
   r.output_levels = {2, 1};
-  EXPECT_THROW(mc::validate(p, r), mc::ConfigError);
+  EXPECT_THROW(mc::check_config(p, r), mc::ConfigError);
   r.output_levels = {};
   p.pre.max_distance = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(mc::validate(p, r), mc::ConfigError);
+  EXPECT_THROW(mc::check_config(p, r), mc::ConfigError);
 }
 
 }  // namespace

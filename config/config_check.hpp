@@ -6,6 +6,6 @@
 
 namespace mc {
 
-void validate(const Params& params, const RunConfig& run);
+void check_config(const Params& params, const RunConfig& run);
 
 }  // namespace mc

@@ -1,4 +1,4 @@
-#include "config/validate.hpp"
+#include "config/config_check.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -89,7 +89,7 @@ void validate_relations(const Params& params) {
 
 }  // namespace
 
-void validate(const Params& params, const RunConfig& run) {
+void check_config(const Params& params, const RunConfig& run) {
   Params copy = params;  // fields_of needs a mutable object; nothing is written through it
   for (const config_detail::Field& f : config_detail::fields_of(copy)) check_field(f);
   validate_relations(params);
