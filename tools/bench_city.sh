@@ -33,13 +33,12 @@ while [ $# -gt 0 ]; do
 done
 [ -x "$bin" ] || { echo "bench_city: $bin not built (cmake --build <dir> --target morphcut_city)" >&2; exit 2; }
 
-data=""
-for d in "$here/../shared/datasets/cityjson/upgraded-2.0" "$here/datasets/3dbag"; do
-  if [ -f "$d/3dbag_v210908_fd2cee53_5910.v20.city.json" ]; then data="$d"; break; fi
+# The tile as bundled in datasets/ (a fresh clone has it), else the copy in ../shared.
+tile_json="" tile_jsonl=""
+for stem in "$here/datasets/3dbag/3dbag_5910" "$here/../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20"; do
+  if [ -f "$stem.city.json" ] && [ -f "$stem.city.jsonl" ]; then tile_json="$stem.city.json"; tile_jsonl="$stem.city.jsonl"; break; fi
 done
-[ -n "$data" ] || { echo "bench_city: 3D BAG tile not found" >&2; exit 2; }
-tile_json="$data/3dbag_v210908_fd2cee53_5910.v20.city.json"
-tile_jsonl="$data/3dbag_v210908_fd2cee53_5910.v20.city.jsonl"
+[ -n "$tile_json" ] || { echo "bench_city: 3D BAG tile not found" >&2; exit 2; }
 mkdir -p "$work"
 
 # The tile N times, every object id suffixed with the copy number (also in parents/children).
