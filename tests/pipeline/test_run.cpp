@@ -155,9 +155,8 @@ TEST(Run, ThreadCountDoesNotChangeAByteOfTheOutputs) {
   MC_REQUIRE_DATA(tile, "upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.jsonl");
   mc::test::TempDir dir("run_determinism");
   const std::string input = head_of_sequence(tile, 16, dir / "head16.city.jsonl");
-  // No deadline (a deadline makes results depend on timing, by design) and no Hausdorff (only an
-  // attribute, and core's computation can currently stall for minutes on one of these buildings).
-  std::ofstream(dir / "det.yaml") << "timeout_s: 0\npreprocess:\n  compute_hausdorff: false\n";
+  // No deadline (a deadline makes results depend on timing, by design).
+  std::ofstream(dir / "det.yaml") << "timeout_s: 0\n";
   for (const char* t : {"1", "2"}) {
     const auto r = mc::test::run_command(mc::test::cli_path() + " " + input + " -q --config " + (dir / "det.yaml") +
                                          " --threads " + t + " -o " +
