@@ -22,11 +22,11 @@ using config_detail::Field;
 
 // Names accepted at the top level besides the sections and the Params fields (config/run_config.hpp),
 // in lod.yaml's order, with their help.
-struct RunKey {
+struct NamedHelp {  // a run key or a section, with its help for --print-config
   const char* name;
   const char* help;
 };
-const RunKey kRunKeys[] = {
+const NamedHelp kRunKeys[] = {
     {"in_flight", "max buildings in flight, and how far ahead the largest is started first (bounds memory); auto = "
                   "max(16, 8 x threads)"},
     {"lod", "input LoD to decompose: highest, or e.g. \"2.2\""},
@@ -34,7 +34,7 @@ const RunKey kRunKeys[] = {
     {"log_level", "stderr messages: trace, debug, info (summary), warn (input problems), error, critical or off"},
 };
 // The sections, in lod.yaml's order, with their help.
-const RunKey kSections[] = {
+const NamedHelp kSections[] = {
     {"preprocess", ""},
     {"decompose", ""},
     {"massing", "part roles and building massing features (docs/massing.md)"},
@@ -127,7 +127,7 @@ class Loader {
     std::vector<std::string> known = {"preprocess", "decompose", "massing"};
     for (const auto& f : fields)
       if (!*f.section) known.push_back(f.name);
-    for (const RunKey& k : kRunKeys) known.push_back(k.name);
+    for (const NamedHelp& k : kRunKeys) known.push_back(k.name);
 
     each_key(root, "", [&](const std::string& name, const std::string& path, const YAML::Node& key,
                            const YAML::Node& value) {
@@ -363,7 +363,7 @@ std::string config_yaml(const Params& params, const RunConfig& run) {
          "# keys you leave out keep these defaults, unknown keys are rejected. Units: model units (metres\n"
          "# for 3D BAG), degrees for angles. Reference: docs/config.md. Printed by\n"
          "# `morphcut-city --print-config` from the key table (config/fields.cpp).\n";
-  for (const RunKey& section : kSections) {
+  for (const NamedHelp& section : kSections) {
     out << "\n";
     yaml_line(out, "", section.name, "", section.help);
     for (const auto& f : fields)
@@ -372,7 +372,7 @@ std::string config_yaml(const Params& params, const RunConfig& run) {
   out << "\n";
   for (const auto& f : fields)
     if (!*f.section) yaml_line(out, "", f.name, yaml_value(j[f.name]), f.help);
-  for (const RunKey& k : kRunKeys) yaml_line(out, "", k.name, yaml_value(j[k.name]), k.help);
+  for (const NamedHelp& k : kRunKeys) yaml_line(out, "", k.name, yaml_value(j[k.name]), k.help);
   return out.str();
 }
 
