@@ -27,11 +27,13 @@ struct NamedHelp {  // a run key or a section, with its help for --print-config
   const char* help;
 };
 const NamedHelp kRunKeys[] = {
-    {"in_flight", "max buildings in flight, and how far ahead the largest is started first (bounds memory); auto = "
-                  "max(16, 8 x threads)"},
+    {"in_flight",
+     "max buildings in flight, and how far ahead the largest is started first (bounds memory); auto = "
+     "max(16, 8 x threads)"},
     {"lod", "input LoD to decompose: highest, or e.g. \"2.2\""},
     {"output_levels", "levels written as BuildingParts: all, or values from decompose.levels"},
-    {"log_level", "stderr messages: trace, debug, info (summary), warn (input problems), error, critical or off"},
+    {"log_level",
+     "stderr messages: trace, debug, info (summary), warn (input problems), error, critical or off"},
 };
 // The sections, in lod.yaml's order, with their help.
 const NamedHelp kSections[] = {
@@ -69,10 +71,14 @@ std::string unknown_key_reason(const std::string& name, const std::vector<std::s
 
 const char* kind_name(const YAML::Node& n) {
   switch (n.Type()) {
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a mapping";
-    case YAML::NodeType::Null: return "nothing";
-    default: return "a scalar";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a mapping";
+    case YAML::NodeType::Null:
+      return "nothing";
+    default:
+      return "a scalar";
   }
 }
 
@@ -84,7 +90,8 @@ class Loader {
     LoadedConfig out;
     auto fields = config_detail::fields_of(out.params);
     if (!root.IsNull()) {
-      if (!root.IsMap()) fail("(root)", "expected a mapping of keys, got " + std::string(kind_name(root)), root);
+      if (!root.IsMap())
+        fail("(root)", "expected a mapping of keys, got " + std::string(kind_name(root)), root);
       walk_top(root, fields, out);
     }
     if (output_levels_) out.run.output_levels = map_output_levels(*output_levels_, out.params);
@@ -114,7 +121,8 @@ class Loader {
   void each_key(const YAML::Node& map, const std::string& prefix, F&& f) {
     std::set<std::string> seen;
     for (const auto& kv : map) {
-      if (!kv.first.IsScalar()) fail(prefix.empty() ? "(root)" : prefix, "keys must be plain names", kv.first);
+      if (!kv.first.IsScalar())
+        fail(prefix.empty() ? "(root)" : prefix, "keys must be plain names", kv.first);
       const std::string name = kv.first.Scalar();
       const std::string path = prefix.empty() ? name : prefix + "." + name;
       if (!seen.insert(name).second) fail(path, "duplicate key", kv.first);
@@ -129,29 +137,30 @@ class Loader {
       if (!*f.section) known.push_back(f.name);
     for (const NamedHelp& k : kRunKeys) known.push_back(k.name);
 
-    each_key(root, "", [&](const std::string& name, const std::string& path, const YAML::Node& key,
-                           const YAML::Node& value) {
-      if (name == "preprocess" || name == "decompose" || name == "massing") {
-        walk_section(name, value, fields);
-      } else if (Field* f = find(fields, "", name)) {
-        set_field(*f, value);
-      } else if (name == "lod") {
-        out.run.lod = scalar_text(path, value);
-      } else if (name == "log_level") {
-        out.run.log_level = scalar_text(path, value);
-      } else if (name == "in_flight") {
-        if (value.IsScalar() && value.Scalar() == "auto") {
-          out.run.in_flight = 0;
-        } else {
-          out.run.in_flight = parse_int<int>(path, value);
-          if (out.run.in_flight < 1) fail(path, "must be >= 1 or auto", value);
-        }
-      } else if (name == "output_levels") {
-        output_levels_ = value;
-      } else {
-        fail(path, unknown_key_reason(name, known), key);
-      }
-    });
+    each_key(root, "",
+             [&](const std::string& name, const std::string& path, const YAML::Node& key,
+                 const YAML::Node& value) {
+               if (name == "preprocess" || name == "decompose" || name == "massing") {
+                 walk_section(name, value, fields);
+               } else if (Field* f = find(fields, "", name)) {
+                 set_field(*f, value);
+               } else if (name == "lod") {
+                 out.run.lod = scalar_text(path, value);
+               } else if (name == "log_level") {
+                 out.run.log_level = scalar_text(path, value);
+               } else if (name == "in_flight") {
+                 if (value.IsScalar() && value.Scalar() == "auto") {
+                   out.run.in_flight = 0;
+                 } else {
+                   out.run.in_flight = parse_int<int>(path, value);
+                   if (out.run.in_flight < 1) fail(path, "must be >= 1 or auto", value);
+                 }
+               } else if (name == "output_levels") {
+                 output_levels_ = value;
+               } else {
+                 fail(path, unknown_key_reason(name, known), key);
+               }
+             });
   }
 
   void walk_section(const std::string& section, const YAML::Node& node, std::vector<Field>& fields) {
@@ -160,12 +169,13 @@ class Loader {
     std::vector<std::string> known;
     for (const auto& f : fields)
       if (section == f.section) known.push_back(f.name);
-    each_key(node, section, [&](const std::string& name, const std::string& path, const YAML::Node& key,
-                                const YAML::Node& value) {
-      Field* f = find(fields, section, name);
-      if (!f) fail(path, unknown_key_reason(name, known), key);
-      set_field(*f, value);
-    });
+    each_key(node, section,
+             [&](const std::string& name, const std::string& path, const YAML::Node& key,
+                 const YAML::Node& value) {
+               Field* f = find(fields, section, name);
+               if (!f) fail(path, unknown_key_reason(name, known), key);
+               set_field(*f, value);
+             });
   }
 
   static Field* find(std::vector<Field>& fields, const std::string& section, const std::string& name) {
@@ -186,8 +196,7 @@ class Loader {
     if (b != e && *b == '+') ++b;
     double v = 0;
     auto [ptr, ec] = std::from_chars(b, e, v);
-    if (ec != std::errc() || ptr != e || b == e)
-      fail(path, "expected a number, got '" + s + "'", n);
+    if (ec != std::errc() || ptr != e || b == e) fail(path, "expected a number, got '" + s + "'", n);
     if (!std::isfinite(v)) fail(path, "must be a finite number", n);
     return v;
   }
@@ -202,8 +211,9 @@ class Loader {
     auto [ptr, ec] = std::from_chars(b, e, v);
     if (ec == std::errc::result_out_of_range) fail(path, "integer out of range: '" + s + "'", n);
     if (ec != std::errc() || ptr != e || b == e)
-      fail(path, std::string("expected ") + (std::is_signed_v<T> ? "an integer" : "a non-negative integer") +
-                     ", got '" + s + "'",
+      fail(path,
+           std::string("expected ") + (std::is_signed_v<T> ? "an integer" : "a non-negative integer") +
+               ", got '" + s + "'",
            n);
     return v;
   }
@@ -236,7 +246,8 @@ class Loader {
           } else if constexpr (std::is_same_v<P, std::string*>) {
             *ptr = scalar_text(path, n);
           } else if constexpr (std::is_same_v<P, std::vector<double>*>) {
-            if (!n.IsSequence()) fail(path, std::string("expected a list of numbers, got ") + kind_name(n), n);
+            if (!n.IsSequence())
+              fail(path, std::string("expected a list of numbers, got ") + kind_name(n), n);
             ptr->clear();
             for (std::size_t i = 0; i < n.size(); ++i)
               ptr->push_back(parse_double(path + "[" + std::to_string(i) + "]", n[i]));
@@ -256,7 +267,8 @@ class Loader {
       const std::string path = "output_levels[" + std::to_string(i) + "]";
       const double v = parse_double(path, n[i]);
       const auto& L = p.dec.levels;
-      auto it = std::find_if(L.begin(), L.end(), [&](double l) { return std::abs(l - v) <= 1e-9 * std::abs(l); });
+      auto it =
+          std::find_if(L.begin(), L.end(), [&](double l) { return std::abs(l - v) <= 1e-9 * std::abs(l); });
       if (it == L.end()) fail(path, "value is not one of decompose.levels", n[i]);
       const std::size_t k = static_cast<std::size_t>(it - L.begin());
       if (std::find(idx.begin(), idx.end(), k) != idx.end()) fail(path, "duplicate level", n[i]);
@@ -345,8 +357,8 @@ std::string yaml_value(const nlohmann::json& v) {
 }
 
 // `key: value` with its help as a comment from column 31 (at least two spaces before it).
-void yaml_line(std::ostringstream& out, const std::string& indent, const std::string& key, const std::string& value,
-               const std::string& help) {
+void yaml_line(std::ostringstream& out, const std::string& indent, const std::string& key,
+               const std::string& value, const std::string& help) {
   std::string line = indent + key + ":" + (value.empty() ? "" : " " + value);
   if (!help.empty()) line += std::string(line.size() + 2 < 31 ? 31 - line.size() : 2, ' ') + "# " + help;
   out << line << "\n";
@@ -367,7 +379,8 @@ std::string config_yaml(const Params& params, const RunConfig& run) {
     out << "\n";
     yaml_line(out, "", section.name, "", section.help);
     for (const auto& f : fields)
-      if (f.section == std::string(section.name)) yaml_line(out, "  ", f.name, yaml_value(j[f.section][f.name]), f.help);
+      if (f.section == std::string(section.name))
+        yaml_line(out, "  ", f.name, yaml_value(j[f.section][f.name]), f.help);
   }
   out << "\n";
   for (const auto& f : fields)

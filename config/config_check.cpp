@@ -68,8 +68,8 @@ void check_field(const config_detail::Field& f) {
 void validate_relations(const Params& params) {
   const PreprocessParams& p = params.pre;
   if (p.max_points < p.min_points)
-    throw ConfigError("preprocess.max_points", "must be >= preprocess.min_points (" +
-                                                   std::to_string(p.min_points) + ")");
+    throw ConfigError("preprocess.max_points",
+                      "must be >= preprocess.min_points (" + std::to_string(p.min_points) + ")");
   const DecomposeParams& d = params.dec;
   if (d.levels.empty()) throw ConfigError("decompose.levels", "must not be empty");
   for (std::size_t i = 0; i < d.levels.size(); ++i) {
@@ -77,8 +77,7 @@ void validate_relations(const Params& params) {
     const double l = d.levels[i];
     if (!std::isfinite(l) || !(l > 0 && l <= 1)) throw ConfigError(key, "must be in (0, 1]");
     // Strictly decreasing: each level refines the previous one's parts (docs/algorithm.md §13).
-    if (i > 0 && !(l < d.levels[i - 1]))
-      throw ConfigError("decompose.levels", "must be strictly decreasing");
+    if (i > 0 && !(l < d.levels[i - 1])) throw ConfigError("decompose.levels", "must be strictly decreasing");
   }
   if (d.max_children == 0 || d.max_children < -1)
     throw ConfigError("decompose.max_children", "must be -1 (keep all) or >= 1");
@@ -97,8 +96,7 @@ void check_config(const Params& params, const RunConfig& run) {
 
   static const std::regex lod_re("^[0-3](\\.[0-9])?$");
   if (run.lod != "highest" && !std::regex_match(run.lod, lod_re))
-    throw ConfigError("lod", "must be 'highest' or a CityJSON LoD such as 2.2, got '" + run.lod +
-                                 "'");
+    throw ConfigError("lod", "must be 'highest' or a CityJSON LoD such as 2.2, got '" + run.lod + "'");
   for (std::size_t i = 0; i < run.output_levels.size(); ++i) {
     if (run.output_levels[i] >= params.dec.levels.size())
       throw ConfigError("output_levels", "level index " + std::to_string(run.output_levels[i]) +

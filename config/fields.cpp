@@ -25,7 +25,8 @@ std::string Range::text() const {
     }
     case Interval:
       if (hi >= 1e308) return std::string(lo_open ? "> " : ">= ") + number(lo) + note;
-      return "in " + std::string(lo_open ? "(" : "[") + number(lo) + ", " + number(hi) + (hi_open ? ")" : "]") + note;
+      return "in " + std::string(lo_open ? "(" : "[") + number(lo) + ", " + number(hi) +
+             (hi_open ? ")" : "]") + note;
   }
   return "";
 }
@@ -38,18 +39,15 @@ std::vector<Field> fields_of(Params& p) {
        "sampling interval i; auto = f_d x bounding-box diagonal"},
       {"preprocess", "dist_thresh", AutoDouble{&a.dist_thresh}, finite(),
        "plane distance tolerance; auto = cell_size / 4"},
-      {"preprocess", "f_d", &a.f_d, in(0, 1, true, false),
-       "automatic resolution factor, in (0, 1]"},
+      {"preprocess", "f_d", &a.f_d, in(0, 1, true, false), "automatic resolution factor, in (0, 1]"},
       {"preprocess", "max_distance", AutoDouble{&a.max_distance}, finite(),
        "region growing: max vertex-to-plane distance; auto = dist_thresh"},
       {"preprocess", "max_angle_deg", &a.max_angle_deg, in(0, 90, true, true),
        "region growing: max normal deviation, in (0, 90)"},
-      {"preprocess", "min_region", &a.min_region, at_least(1),
-       "region growing: min faces per region"},
+      {"preprocess", "min_region", &a.min_region, at_least(1), "region growing: min faces per region"},
       {"preprocess", "angle_thresh_deg", &a.angle_thresh_deg, in(0, 90, true, true),
        "plane merge / snapping / vertical-horizontal classes, in (0, 90)"},
-      {"preprocess", "min_points", &a.min_points, at_least(1),
-       "carving: min sample points per cell"},
+      {"preprocess", "min_points", &a.min_points, at_least(1), "carving: min sample points per cell"},
       {"preprocess", "max_points", &a.max_points, any(),
        "carving: max sample points per cell (>= min_points)"},
       {"preprocess", "inside_vote", &a.inside_vote, in(0, 1, true, true),
@@ -59,21 +57,25 @@ std::vector<Field> fields_of(Params& p) {
       {"preprocess", "vote_batch", &a.vote_batch, at_least(0),
        "carving: points voting on a cell the input surface does not touch (0 = full vote)"},
       {"preprocess", "min_gap", &a.min_gap, at_least(0),
-       "carving: a plane a hair (< δ/10) from a cell vertex may still cut a badly mislabelled cell if it keeps this distance from it (model units; 0 = never)"},
+       "carving: a plane a hair (< δ/10) from a cell vertex may still cut a badly mislabelled cell if it "
+       "keeps this distance from it (model units; 0 = never)"},
       {"preprocess", "snap_corners", &a.snap_corners, any(),
-       "fitted planes sharing an input corner (4+ planes, e.g. a roof valley's eave) are made to meet there exactly"},
+       "fitted planes sharing an input corner (4+ planes, e.g. a roof valley's eave) are made to meet there "
+       "exactly"},
       {"preprocess", "oracle_rays", &a.oracle_rays, at_least(1),
        "rays per point in the inside/outside majority vote"},
       {"preprocess", "fast_path", &a.fast_path, any(),
        "an input that is a valid solid is labelled by one clean ray per point instead of the vote"},
       {"preprocess", "fill_enclosed", &a.fill_enclosed, any(),
-       "a point no ray escapes from (horizon to zenith) is inside, whatever the parity (interior floor sheets)"},
+       "a point no ray escapes from (horizon to zenith) is inside, whatever the parity (interior floor "
+       "sheets)"},
       {"preprocess", "oracle", &a.oracle, one_of({"auto", "parity", "vertical"}),
-       "inside/outside oracle: auto (parity for closed inputs, the vertical roof-over-ground vote for open ones), parity or vertical"},
+       "inside/outside oracle: auto (parity for closed inputs, the vertical roof-over-ground vote for open "
+       "ones), parity or vertical"},
       {"preprocess", "volume_check", &a.volume_check, at_least(0, " (0 = off)"),
-       "cell vs independent volume estimate: beyond this relative difference a second labelling runs, and a remaining one is reported (morphcut_volume_check); 0 = off"},
-      {"preprocess", "seed", &a.seed, any(),
-       "every random choice derives from it (determinism)"},
+       "cell vs independent volume estimate: beyond this relative difference a second labelling runs, and a "
+       "remaining one is reported (morphcut_volume_check); 0 = off"},
+      {"preprocess", "seed", &a.seed, any(), "every random choice derives from it (determinism)"},
       {"preprocess", "up_axis", &a.up_axis, one_of({"z", "y", "auto"}),
        "vertical input axis: z, y or auto (NYC crops are y-up)"},
       {"preprocess", "min_component_fraction", &a.min_component_fraction, in(0, 1, false, true),
@@ -82,12 +84,10 @@ std::vector<Field> fields_of(Params& p) {
        "relative error bound of the Hausdorff distance (of the diagonal)"},
       {"preprocess", "compute_hausdorff", &a.compute_hausdorff, any(),
        "report the Hausdorff distance of each level's parts to the input"},
-      {"decompose", "levels", &d.levels, any(),
-       "LoD thresholds, strictly decreasing, each in (0, 1]"},
+      {"decompose", "levels", &d.levels, any(), "LoD thresholds, strictly decreasing, each in (0, 1]"},
       {"decompose", "sigma", &d.sigma, at_least(0),
        "cost = g + sigma*h; 1 = optimal search, 2 = fast (paper)"},
-      {"decompose", "k", &d.k, at_least(1),
-       "concave edges per attached part in the heuristic h"},
+      {"decompose", "k", &d.k, at_least(1), "concave edges per attached part in the heuristic h"},
       {"decompose", "concave_thresh", &d.concave_thresh, in(1, 2, false, true, " (units of pi)"),
        "keep concave edges with angle >= concave_thresh*pi, in [1, 2)"},
       {"decompose", "cvx_thresh", &d.cvx_thresh, in(0, 1, true, false),
@@ -100,14 +100,15 @@ std::vector<Field> fields_of(Params& p) {
        "best children kept per expansion; -1 keeps all (paper)"},
       {"decompose", "max_candidates", &d.max_candidates, at_least(0, " (0 = all)"),
        "top candidate planes per part by weight; 0 = all"},
-      {"decompose", "first_level_candidates", &d.first_level_candidates, at_least(-1, " (-1 = max_candidates, 0 = all)"),
+      {"decompose", "first_level_candidates", &d.first_level_candidates,
+       at_least(-1, " (-1 = max_candidates, 0 = all)"),
        "the same cap for the first level's whole-building searches; -1 = max_candidates, 0 = all"},
-      {"decompose", "node_budget", &d.node_budget, at_least(1),
-       "expanded search nodes per part search"},
+      {"decompose", "node_budget", &d.node_budget, at_least(1), "expanded search nodes per part search"},
       {"decompose", "significance_max", &d.significance_max, any(),
        "edge significance = max over samples (paper) rather than mean"},
       {"decompose", "split_chains", &d.split_chains, any(),
-       "split a plane pair's concave edges into connected lines (false: one line per pair, as the research code)"},
+       "split a plane pair's concave edges into connected lines (false: one line per pair, as the research "
+       "code)"},
       {"decompose", "merge_tiny_parts", &d.merge_tiny_parts, any(),
        "merge parts below 0.1 x level x volume after each level"},
       {"decompose", "revisit_boundaries", &d.revisit_boundaries, any(),
@@ -117,7 +118,8 @@ std::vector<Field> fields_of(Params& p) {
       {"decompose", "merge_convex_parts", &d.merge_convex_parts, any(),
        "then merge neighbouring parts while the level's cost drops (union not cuttable at the level)"},
       {"decompose", "uncut_convexity", &d.uncut_convexity, in(0, 1, true, false),
-       "undo a level's cuts that raise its whole-building cost if the part put back is this convex (and the building cvx_thresh); 1 = never, in (0, 1]"},
+       "undo a level's cuts that raise its whole-building cost if the part put back is this convex (and the "
+       "building cvx_thresh); 1 = never, in (0, 1]"},
       {"massing", "level", &p.massing.level, in(0, 1, true, false),
        "the LoD level whose parts give the building features (nearest written level)"},
       {"massing", "ground_tolerance", &p.massing.ground_tolerance, at_least(0),
@@ -131,7 +133,8 @@ std::vector<Field> fields_of(Params& p) {
       {"massing", "rooftop_max_share", &p.massing.rooftop_max_share, at_least(0),
        "raised part with <= this x its support's volume: rooftop, else setback"},
       {"massing", "roof_max_fill", &p.massing.roof_max_fill, in(0, 1, false, false),
-       "raised part filling <= this of footprint x height (a wedge ~0.5), resting flat on its support: roof, in [0, 1]"},
+       "raised part filling <= this of footprint x height (a wedge ~0.5), resting flat on its support: roof, "
+       "in [0, 1]"},
       {"massing", "podium_max_roof_share", &p.massing.podium_max_roof_share, at_least(0),
        "a tower's contact covers at most this share of its podium's footprint"},
       {"massing", "tower_min_slenderness", &p.massing.tower_min_slenderness, at_least(0),
@@ -144,8 +147,7 @@ std::vector<Field> fields_of(Params& p) {
        "per-building deadline in seconds (best result so far); 0 = none"},
       {"", "max_faces", &p.max_faces, at_least(0, " (0 = no limit)"),
        "buildings with more input faces are skipped as too large; 0 = no limit"},
-      {"", "threads", &p.threads, at_least(0, " (0 = all cores)"),
-       "worker threads; 0 = all cores"},
+      {"", "threads", &p.threads, at_least(0, " (0 = all cores)"), "worker threads; 0 = all cores"},
   };
 }
 

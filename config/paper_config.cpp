@@ -34,15 +34,15 @@ const std::map<std::string, std::string> kPaperToOurs = {
     {"with_bisector", "decompose.with_bisector"},
 };
 // Required in the research code (it crashes without them); we warn and keep a default instead.
-const char* const kRequired[] = {"max_distance", "max_angle",      "min_region", "angle_thresh",
-                                 "dist_thresh",  "cell_size",      "concave_thresh",
-                                 "min_points",   "max_points",     "sigma"};
+const char* const kRequired[] = {"max_distance", "max_angle", "min_region",     "angle_thresh",
+                                 "dist_thresh",  "cell_size", "concave_thresh", "min_points",
+                                 "max_points",   "sigma"};
 // Read by the research code but without effect there (dead parameters, or file-name only), or
 // without a counterpart here.
 // (cvx_thresh is dead in the research code too, but here it does what it was meant for.)
 const char* const kInert[] = {"extended_plane_ch", "fewer_comp",
-                               // RC's duplicate tolerance: the search finds duplicates by exact part sets
-                               "same_vol_factor"};
+                              // RC's duplicate tolerance: the search finds duplicates by exact part sets
+                              "same_vol_factor"};
 // Extra objective terms of the paper's Appendix D, not implemented here.
 const char* const kTerms[] = {"max_vol", "symmetry", "central", "decentral"};
 const char* const kTermWeights[] = {"max_vol_weight", "symmetry_weight", "central_weight",
@@ -88,7 +88,8 @@ class PaperReader {
     if (!v.is_array()) fail(key, "expected a list of numbers, got " + v.dump());
     std::vector<double> out;
     for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!v[i].is_number()) fail(key + "[" + std::to_string(i) + "]", "expected a number, got " + v[i].dump());
+      if (!v[i].is_number())
+        fail(key + "[" + std::to_string(i) + "]", "expected a number, got " + v[i].dump());
       out.push_back(v[i].get<double>());
     }
     return out;
@@ -111,9 +112,7 @@ Params load_paper_config(const std::string& path, std::vector<std::string>* warn
   json j;
   try {
     j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw ConfigError(path, std::string("invalid JSON: ") + e.what());
-  }
+  } catch (const json::parse_error& e) { throw ConfigError(path, std::string("invalid JSON: ") + e.what()); }
   if (!j.is_object()) throw ConfigError("(root)", "expected a JSON object", path);
   PaperReader r(j, path);
 

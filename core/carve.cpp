@@ -18,8 +18,8 @@ enum class Crossing { No, Hair, Yes };
 
 // A vertex on the padded carving box: never part of the output (the box lies beyond the input).
 bool on_outer_box(const Vec3& v, const BBox& outer) {
-  return v.x == outer.lo.x || v.x == outer.hi.x || v.y == outer.lo.y || v.y == outer.hi.y || v.z == outer.lo.z ||
-         v.z == outer.hi.z;
+  return v.x == outer.lo.x || v.x == outer.hi.x || v.y == outer.lo.y || v.y == outer.hi.y ||
+         v.z == outer.lo.z || v.z == outer.hi.z;
 }
 
 // A plane passing within δ/10 of a vertex without going through it would create vertices a hair
@@ -29,9 +29,12 @@ bool on_outer_box(const Vec3& v, const BBox& outer) {
 struct HairTest {
   double on, hair;
   const BBox& outer;
-  HairTest(const Plane& pl, double delta, const BBox& box) : on(1e-9 * (1 + std::abs(pl.d))), hair(0.1 * delta), outer(box) {}
+  HairTest(const Plane& pl, double delta, const BBox& box)
+      : on(1e-9 * (1 + std::abs(pl.d))), hair(0.1 * delta), outer(box) {}
   // `dist`: the vertex's unsigned distance from the plane.
-  bool operator()(double dist, const Vec3& v) const { return dist > on && dist < hair && !on_outer_box(v, outer); }
+  bool operator()(double dist, const Vec3& v) const {
+    return dist > on && dist < hair && !on_outer_box(v, outer);
+  }
 };
 
 // Does plane q really cross cell c: a vertex beyond δ on both sides and the region nearby.
@@ -119,7 +122,8 @@ std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, u
   constexpr double g = 1.22074408460575947536;
   const double a1 = 1 / g, a2 = 1 / (g * g), a3 = 1 / (g * g * g);
   const uint64_t h = mix(seed);
-  double o1 = (h & 0xffff) / 65536.0, o2 = ((h >> 16) & 0xffff) / 65536.0, o3 = ((h >> 32) & 0xffff) / 65536.0;
+  double o1 = (h & 0xffff) / 65536.0, o2 = ((h >> 16) & 0xffff) / 65536.0,
+         o3 = ((h >> 32) & 0xffff) / 65536.0;
   double cum = 0;
   long done = 0;
   size_t k = 0;
@@ -162,7 +166,8 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
     const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
     const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(cx.cell_bbox(c));
-    const auto pts = sample_cell(cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
+    const auto pts = sample_cell(
+        cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
     classify(pts, first_id, flags);
     size_t in = 0;
     for (uint8_t f : flags) in += f != 0;
@@ -219,8 +224,9 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       // below min_gap (fitting noise) break parts when quantised (docs/algorithm.md §7.4,
       // docs/design.md "Valid solids at every step").
       if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) continue;
-      auto it = std::find_if(deferred.begin(), deferred.end(),
-                             [&](uint32_t q) { return hair_gap(cx, c, planes[q], p.dist, outer) >= p.min_gap; });
+      auto it = std::find_if(deferred.begin(), deferred.end(), [&](uint32_t q) {
+        return hair_gap(cx, c, planes[q], p.dist, outer) >= p.min_gap;
+      });
       if (it == deferred.end()) continue;
       i = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
       deferred.erase(it);
@@ -260,7 +266,8 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
   };
   auto flip = [](std::vector<uint32_t>& cells, uint32_t c) {
     auto it = std::lower_bound(cells.begin(), cells.end(), c);
-    if (it != cells.end() && *it == c) cells.erase(it); else cells.insert(it, c);
+    if (it != cells.end() && *it == c) cells.erase(it);
+    else cells.insert(it, c);
   };
   // Each cell changes side at most once, so the repair cannot oscillate (a flip that removes one
   // pinch may create another next to it); among the cells around a pinch edge the smallest one
@@ -343,7 +350,8 @@ size_t fill_cavities(const CellComplex& cx, std::vector<uint32_t>& inside, doubl
   return filled;
 }
 
-std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx,
+                                                        const std::vector<uint32_t>& cells) {
   std::unordered_set<uint32_t> in(cells.begin(), cells.end());
   std::unordered_set<uint32_t> seen;
   std::vector<uint32_t> sorted = cells;

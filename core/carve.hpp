@@ -32,22 +32,23 @@ struct CarveParams {
   double inside_vote = 0.5;
   double inconsistency = 1e-3;  // times c³
   size_t max_cells = 50000;
-  int vote_batch = 9;           // points deciding a cell the surface does not touch (0 = full vote)
-  double min_gap = 0.002;       // see PreprocessParams::min_gap
+  int vote_batch = 9;      // points deciding a cell the surface does not touch (0 = full vote)
+  double min_gap = 0.002;  // see PreprocessParams::min_gap
   // Whether the input surface touches a box (conservative); null = always full votes.
   std::function<bool(const BBox&)> surface_touches;
   uint64_t seed = 1;
 };
 
 // Classifies points (inside = 1); `first_id` seeds per-point ray jitter deterministically.
-using PointClassifier = std::function<void(const std::vector<Vec3>&, uint64_t first_id, std::vector<uint8_t>&)>;
+using PointClassifier =
+    std::function<void(const std::vector<Vec3>&, uint64_t first_id, std::vector<uint8_t>&)>;
 
 struct CarveResult {
   std::vector<uint32_t> inside;  // live inside cells, ascending ids
   size_t cells = 0;              // live cells at the end
   size_t splits = 0;
-  size_t points = 0;             // oracle queries
-  bool truncated = false;        // stopped by max_cells or the deadline
+  size_t points = 0;       // oracle queries
+  bool truncated = false;  // stopped by max_cells or the deadline
 };
 
 CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const PointClassifier& classify,
@@ -67,6 +68,7 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
 size_t fill_cavities(const CellComplex& cx, std::vector<uint32_t>& inside, double& filled_volume);
 
 // Face-connected components of a set of cells (through facets with both sides in the set).
-std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx, const std::vector<uint32_t>& cells);
+std::vector<std::vector<uint32_t>> connected_components(const CellComplex& cx,
+                                                        const std::vector<uint32_t>& cells);
 
 }  // namespace mc

@@ -246,7 +246,8 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
   };
   auto attach = [&](uint32_t f, uint32_t to) {
     Facet& fa = facets_[f];
-    if (fa.front == c) fa.front = to; else fa.back = to;
+    if (fa.front == c) fa.front = to;
+    else fa.back = to;
     cells_[to].facets.push_back(f);
   };
   // Replaces facet f in neighbour n's list by the given pieces.
@@ -288,10 +289,12 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
     const bool c_in_front = facets_[f].front == c;
     const uint32_t other = c_in_front ? facets_[f].back : facets_[f].front;
     if (c_in_front) {
-      lo.front = cn; hi.front = cp;
+      lo.front = cn;
+      hi.front = cp;
       lo.back = hi.back = other;
     } else {
-      lo.back = cn; hi.back = cp;
+      lo.back = cn;
+      hi.back = cp;
       lo.front = hi.front = other;
     }
     kill_facet(f);

@@ -29,8 +29,8 @@ class CellComplex {
   struct Facet {
     std::vector<uint32_t> loop;  // vertex ids; right-hand normal = +normal of `plane`
     uint32_t plane = kNone;
-    uint32_t front = kNone;      // cell on the positive side of the plane (or kNone = outside)
-    uint32_t back = kNone;       // cell on the negative side
+    uint32_t front = kNone;  // cell on the positive side of the plane (or kNone = outside)
+    uint32_t back = kNone;   // cell on the negative side
     bool alive = true;
   };
   struct Cell {

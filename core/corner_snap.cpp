@@ -60,7 +60,8 @@ size_t snap_corners(const PolygonMesh& mesh, const std::vector<PlaneRegion>& reg
       if (base.size() == 3) break;
       const Plane& p = registry[id];
       if (base.size() == 1 && norm(cross(registry[base[0]].n, p.n)) < kMinSin) continue;
-      if (base.size() == 2 && std::abs(dot(p.n, cross(registry[base[0]].n, registry[base[1]].n))) < kMinSin * kMinSin)
+      if (base.size() == 2 &&
+          std::abs(dot(p.n, cross(registry[base[0]].n, registry[base[1]].n))) < kMinSin * kMinSin)
         continue;
       base.push_back(id);
     }

@@ -23,7 +23,9 @@ namespace {
 
 using namespace level;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // Whole-building statistics of a level (normalised by the singleton cell R, docs/algorithm.md §11.3).
 void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<LevelPart>& work,
@@ -72,7 +74,8 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
   Decomposition out;
   CellComplex& cx = *pre.complex;
   std::vector<LevelPart> work;
-  for (size_t i = 0; i < pre.components.size(); ++i) work.push_back({pre.components[i].cells, static_cast<int>(i)});
+  for (size_t i = 0; i < pre.components.size(); ++i)
+    work.push_back({pre.components[i].cells, static_cast<int>(i)});
   double total_volume = 0;
   for (const auto& c : pre.components) total_volume += c.volume;
 
@@ -83,7 +86,8 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     for (const LevelPart& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
     std::sort(all.begin(), all.end());
     const CellSpace space = make_space(cx, all);
-    const PartAnalysis r = analyze_part(space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), kNoNewPlanes);
+    const PartAnalysis r = analyze_part(
+        space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), kNoNewPlanes);
     out.concave_edges = r.e_all;
     obj = Objective::of_root(r.e_all, r.delta, p);
   }
@@ -169,11 +173,13 @@ PolygonMesh surface_to_mesh(const Preprocessed& pre, const Surface& s) {
   m.semantic_labels = std::move(labels.semantic_labels);
   for (Vec3& v : m.vertices) v = pre.to_input(v);
   for (size_t i = 0; i < s.faces.size(); ++i)
-    if (s.faces[i].neighbour != CellComplex::kNone) m.faces[i].neighbour = static_cast<int32_t>(s.faces[i].neighbour);
+    if (s.faces[i].neighbour != CellComplex::kNone)
+      m.faces[i].neighbour = static_cast<int32_t>(s.faces[i].neighbour);
   return m;
 }
 
-PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid) {
+PolygonMesh surface_mesh(const Preprocessed& pre, const std::vector<uint32_t>& cells,
+                         const std::vector<uint32_t>* solid) {
   return surface_to_mesh(pre, extract_surface(*pre.complex, cells, solid));
 }
 
@@ -204,8 +210,9 @@ std::vector<PolygonMesh> level_part_meshes(const Preprocessed& pre, const std::v
   // them (the drop rule depends on the part alone, so the others are already right).
   // Each part's surface only reads the complex: extracted in parallel, in part order.
   std::vector<Surface> surfaces(leaves.size());
-  tbb::parallel_for(size_t(0), leaves.size(),
-                    [&](size_t p) { surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, nullptr}); });
+  tbb::parallel_for(size_t(0), leaves.size(), [&](size_t p) {
+    surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, nullptr});
+  });
   std::unordered_set<uint32_t> corners;
   for (const Surface& s : surfaces)
     for (const auto& f : s.faces)

@@ -18,31 +18,31 @@
 namespace mc {
 
 struct PartResult {
-  std::vector<uint32_t> cells;      // global cells when recorded (expand with CellComplex::leaves)
+  std::vector<uint32_t> cells;  // global cells when recorded (expand with CellComplex::leaves)
   double volume = 0, hull_volume = 0;
-  double convexity = 0;             // V / V_CH
-  std::vector<uint32_t> neighbours; // indices of parts of the same level sharing a face
-  int component = 0;                // singleton component the part belongs to
+  double convexity = 0;              // V / V_CH
+  std::vector<uint32_t> neighbours;  // indices of parts of the same level sharing a face
+  int component = 0;                 // singleton component the part belongs to
 };
 
 struct LevelResult {
   double lod = 0;
   std::vector<PartResult> parts;
-  double cost = 0, g = 0, h = 0;    // whole-building normalisation (docs/algorithm.md §11.3)
-  double convexity = 0;             // volume-weighted mean of V/V_CH
+  double cost = 0, g = 0, h = 0;  // whole-building normalisation (docs/algorithm.md §11.3)
+  double convexity = 0;           // volume-weighted mean of V/V_CH
   double min_convexity = 0;
-  double mean_convexity = 0;        // unweighted mean (paper Eq. C.1)
-  int remaining_concave = 0;        // Σ E_all over parts
+  double mean_convexity = 0;  // unweighted mean (paper Eq. C.1)
+  int remaining_concave = 0;  // Σ E_all over parts
   int64_t nodes_expanded = 0;
   double seconds = 0;
-  bool truncated = false;           // a search hit the deadline or its node budget
+  bool truncated = false;  // a search hit the deadline or its node budget
 };
 
 struct Decomposition {
   std::vector<LevelResult> levels;
-  bool partial = false;             // deadline reached: some level is not fully searched
+  bool partial = false;  // deadline reached: some level is not fully searched
   std::string reason;
-  int concave_edges = 0;            // E_all of the singleton cell
+  int concave_edges = 0;  // E_all of the singleton cell
   double seconds = 0;
 };
 

@@ -66,7 +66,10 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
     double len2 = -1;
     for (int i = 0; i < 3; ++i) {
       const double l = CGAL::to_double(CGAL::squared_distance(tri[i], tri[(i + 1) % 3]));
-      if (l > len2) { len2 = l; longest = i; }
+      if (l > len2) {
+        len2 = l;
+        longest = i;
+      }
     }
     const double len = std::sqrt(len2);
     const double area = std::sqrt(CGAL::to_double(K::Triangle_3(tri[0], tri[1], tri[2]).squared_area()));

@@ -6,7 +6,7 @@
 namespace mc {
 
 struct HausdorffResult {
-  double a_to_b = 0;       // max over points of a of the distance to b
+  double a_to_b = 0;  // max over points of a of the distance to b
   double b_to_a = 0;
   double symmetric = 0;    // max of the two
   double mean_a_to_b = 0;  // area-weighted mean distance from a to b
@@ -19,8 +19,8 @@ struct HausdorffResult {
 // distances to the other soup are taken (CGAL AABB tree). The maxima are lower bounds within
 // `sampling_step` of the true values; triangles that cannot raise the maximum (distance is
 // 1-Lipschitz: corner distance + edge length) are not sampled. The mean is estimated from at
-// most 8000 samples per side (coarser lattice when needed; corners and edges always sampled). A step <= 0 means 0.1% of the
-// bounding-box diagonal. Degenerate triangles are ignored. An empty side: distances from it
+// most 8000 samples per side (coarser lattice when needed; corners and edges always sampled). A step <= 0
+// means 0.1% of the bounding-box diagonal. Degenerate triangles are ignored. An empty side: distances from it
 // are 0, to it +infinity. Works on open, non-manifold, self-intersecting soups.
 HausdorffResult hausdorff(const TriangleSoup& a, const TriangleSoup& b, double sampling_step);
 

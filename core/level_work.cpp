@@ -37,7 +37,8 @@ PreparedPart refine(Preprocessed& pre, const LevelPart& w, const AnalysisContext
   PlaneRegistry& reg = *pre.planes;
   PreparedPart pr;
   CellSpace coarse = make_space(cx, w.cells);
-  const PlaneResolver add = [&](const Plane& g, const std::vector<uint32_t>& pool) -> std::optional<uint32_t> {
+  const PlaneResolver add = [&](const Plane& g,
+                                const std::vector<uint32_t>& pool) -> std::optional<uint32_t> {
     return reg.add_snapped(g, pool, ctx.angle_rad, ctx.dist, ctx.box, PlaneOrigin::Candidate);
   };
   PartAnalysis info = analyze_part(coarse, coarse.all(), ctx, add);
@@ -138,12 +139,15 @@ Bits LevelSpace::bits(const LevelPart& w) const {
   return b;
 }
 
-const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&) {
+  return std::optional<uint32_t>{};
+};
 
-std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<LevelPart>& work,
-                                    const AnalysisContext& ctx) {
+std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls,
+                                        const std::vector<LevelPart>& work, const AnalysisContext& ctx) {
   std::vector<PartAnalysis> info(work.size());
-  tbb::parallel_for(size_t(0), work.size(), [&](size_t i) { info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes); });
+  tbb::parallel_for(size_t(0), work.size(),
+                    [&](size_t i) { info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes); });
   return info;
 }
 

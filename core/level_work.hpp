@@ -35,8 +35,8 @@ std::vector<uint32_t> current_leaves(const CellComplex& cx, const std::vector<ui
 // The owners other than `self` of the cells across the facets of `cells`, ascending; `owner_of`
 // maps a cell to its owner, or to CellComplex::kNone for a cell outside every part.
 template <class OwnerOf>
-std::vector<uint32_t> neighbour_owners(const CellComplex& cx, const std::vector<uint32_t>& cells, uint32_t self,
-                                       const OwnerOf& owner_of) {
+std::vector<uint32_t> neighbour_owners(const CellComplex& cx, const std::vector<uint32_t>& cells,
+                                       uint32_t self, const OwnerOf& owner_of) {
   std::vector<uint32_t> nb;
   for (uint32_t c : cells)
     for (uint32_t f : cx.cell(c).facets) {
@@ -86,8 +86,8 @@ struct LevelSpace {
 extern const PlaneResolver kNoNewPlanes;
 
 // Every part of a level analysed, in parallel (the analysis only reads the complex); in order.
-std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls, const std::vector<LevelPart>& work,
-                                    const AnalysisContext& ctx);
+std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls,
+                                        const std::vector<LevelPart>& work, const AnalysisContext& ctx);
 
 // A part's convexity V/V_CH as reported (1 for an exactly convex part).
 inline double reported_convexity(const PartAnalysis& info) {

@@ -62,7 +62,8 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     for (uint32_t a = 0; a < work.size(); ++a) {
       if (!alive[a]) continue;
       for (uint32_t b : neighbours(a))
-        if (b > a && alive[b] && work[a].component == work[b].component && !cache.count({a, b})) todo.emplace_back(a, b);
+        if (b > a && alive[b] && work[a].component == work[b].component && !cache.count({a, b}))
+          todo.emplace_back(a, b);
     }
     std::vector<PartAnalysis> unions(todo.size());
     tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
@@ -101,7 +102,8 @@ void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, 
     info[a] = std::move(merged);
     for (auto it = cache.begin(); it != cache.end();)
       it = (it->first.first == a || it->first.second == a || it->first.first == b || it->first.second == b)
-               ? cache.erase(it) : std::next(it);
+               ? cache.erase(it)
+               : std::next(it);
   }
   std::vector<LevelPart> kept;
   for (uint32_t i = 0; i < work.size(); ++i)

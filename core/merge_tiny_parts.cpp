@@ -35,7 +35,8 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
       for (uint32_t f : cx.cell(c).facets) {
         const uint32_t o = cx.other_side(f, c);
         auto it = o == CellComplex::kNone ? owner.end() : owner.find(o);
-        if (it != owner.end() && it->second != static_cast<uint32_t>(victim)) shared[it->second] += cx.facet_area(f);
+        if (it != owner.end() && it->second != static_cast<uint32_t>(victim))
+          shared[it->second] += cx.facet_area(f);
       }
     if (shared.empty()) {
       v_min = std::min(v_min, vol[victim]);  // isolated: keep it, look at larger ones only

@@ -80,8 +80,8 @@ OpenInput analyse_open_input(const PolygonMesh& mesh, double dist) {
   return out;
 }
 
-std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, double angle_rad, double min_length,
-                                            double z_lo, double z_hi) {
+std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, double angle_rad,
+                                            double min_length, double z_lo, double z_hi) {
   struct Group {
     Plane plane;
     BBox box;
@@ -148,7 +148,8 @@ std::vector<uint8_t> cover_triangles(const TriangleSoup& soup, const PolygonMesh
         continue;
     }
     const auto& t = soup.triangles[i];
-    const Vec3 n = cross(soup.vertices[t[1]] - soup.vertices[t[0]], soup.vertices[t[2]] - soup.vertices[t[0]]);
+    const Vec3 n =
+        cross(soup.vertices[t[1]] - soup.vertices[t[0]], soup.vertices[t[2]] - soup.vertices[t[0]]);
     const double l = norm(n);
     out[i] = l > 0 && std::abs(n.z) >= 0.05 * l;
   }

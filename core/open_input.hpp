@@ -14,7 +14,7 @@
 namespace mc {
 
 struct OpenInput {
-  double boundary_length = 0;   // edges used by one ring
+  double boundary_length = 0;  // edges used by one ring
   // Boundary length not lying (within δ, collinear) along another boundary edge: T-junctions and
   // cracks between faces that meet geometrically are covered; the border of a missing face is not.
   // Edges in the lowest level (within δ) do not count: an open bottom is what the parity vote's
@@ -23,7 +23,8 @@ struct OpenInput {
   std::vector<std::pair<Vec3, Vec3>> uncovered_edges;  // all of them, the lowest level's too
   size_t nonmanifold_edges = 0;  // edges used by 3+ rings (interior sheets glued to walls)
   bool semantics = false;        // some face has a semantic surface type
-  bool has_ground = false;  // a GroundSurface, or (no semantics) a downward horizontal face at the lowest level
+  bool has_ground =
+      false;  // a GroundSurface, or (no semantics) a downward horizontal face at the lowest level
   bool open(double cell_size) const { return uncovered_length > 2 * cell_size; }
   // Whether the vertical vote can be trusted: it counts every non-vertical surface, so interior
   // sheets (edges of 3+ faces) break it unless semantics say which surfaces are interior.
@@ -37,8 +38,8 @@ OpenInput analyse_open_input(const PolygonMesh& mesh, double dist);
 // edge, the rim of a ground without walls), edges with the same plane (normals within
 // `angle_rad`, within δ) grouped; groups shorter than `min_length` are left out. Each plane's box
 // spans its edges horizontally (grown by δ) and [z_lo, z_hi] vertically.
-std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, double angle_rad, double min_length,
-                                            double z_lo, double z_hi);
+std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, double angle_rad,
+                                            double min_length, double z_lo, double z_hi);
 
 // Per triangle of `soup` (triangulated from `mesh`, source_face into mesh.faces): whether the
 // vertical vote counts it. Semantics when the face has one (RoofSurface, GroundSurface and other

@@ -76,8 +76,8 @@ double unit_double(uint64_t x) { return static_cast<double>(x >> 11) * 0x1.0p-53
 
 struct InsideOracle::Impl {
   RTCScene scene = nullptr;
-  Vec3 origin;        // soup bbox centre: Embree works in float, so coordinates are centred
-  double dedup_t = 0; // hits closer than this along a ray are one crossing
+  Vec3 origin;         // soup bbox centre: Embree works in float, so coordinates are centred
+  double dedup_t = 0;  // hits closer than this along a ray are one crossing
   // Parity group per triangle: each closed connected shell is its own group, every open piece
   // shares group 0. A point is inside if it is inside any group (union of overlapping shells).
   std::vector<uint32_t> group;
@@ -108,8 +108,8 @@ RTCScene triangle_scene(const TriangleSoup& soup, const std::vector<uint32_t>* u
     vb[3 * i + 2] = static_cast<float>(p.z);
   }
   const size_t n = used ? used->size() : soup.triangles.size();
-  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                            3 * sizeof(unsigned), n));
+  auto* ib = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
   for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) ib[3 * i + k] = soup.triangles[used ? (*used)[i] : i][k];
   rtcSetGeometryIntersectFilterFunction(geom, filter);
@@ -141,7 +141,8 @@ Hits& ray_hits(RTCScene scene, const Vec3& from, const Vec3& dir) {
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     return a.second != b.second ? a.second < b.second : a.first < b.first;
   });
-  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.second == b.second; }),
+  hits.erase(std::unique(hits.begin(), hits.end(),
+                         [](const auto& a, const auto& b) { return a.second == b.second; }),
              hits.end());
   return hits;
 }
@@ -170,8 +171,8 @@ uint64_t edge_key(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 
 // the component is one more group if it is closed too. Parity over the glued union would call the
 // overlap of two shells outside; per shell it is inside some shell. Patches of (near) zero volume
 // (doubled sheets) are returned as `ignored`. Returns false (no split) when that does not work out.
-bool split_glued_shells(const TriangleSoup& soup, const std::vector<uint32_t>& tris, std::vector<std::vector<uint32_t>>& groups,
-                        std::vector<uint32_t>& ignored) {
+bool split_glued_shells(const TriangleSoup& soup, const std::vector<uint32_t>& tris,
+                        std::vector<std::vector<uint32_t>>& groups, std::vector<uint32_t>& ignored) {
   std::unordered_map<uint64_t, std::vector<uint32_t>> edges;  // edge -> positions in `tris`
   for (uint32_t i = 0; i < tris.size(); ++i)
     for (int k = 0; k < 3; ++k) {
@@ -251,10 +252,8 @@ bool split_glued_shells(const TriangleSoup& soup, const std::vector<uint32_t>& t
     }
     std::vector<uint32_t> g;
     for (uint32_t i : ids) g.push_back(tris[i]);
-    if (std::abs(vol) <= 1e-9 * diag * diag * diag)
-      ignored.insert(ignored.end(), g.begin(), g.end());
-    else
-      groups.push_back(std::move(g));
+    if (std::abs(vol) <= 1e-9 * diag * diag * diag) ignored.insert(ignored.end(), g.begin(), g.end());
+    else groups.push_back(std::move(g));
   }
   if (!rest.empty()) {
     if (!closed(rest)) return false;
@@ -318,7 +317,9 @@ void InsideOracle::set_merge_distance(double t) {
 
 InsideOracle::~InsideOracle() = default;
 
-int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const { return count_crossings(p, dir, nullptr); }
+int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
+  return count_crossings(p, dir, nullptr);
+}
 
 int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir, bool* clean) const {
   if (clean) *clean = impl_->groups == 1;
@@ -423,7 +424,8 @@ bool InsideOracle::enclosed(const Vec3& p, uint64_t point_id) const {
   return true;
 }
 
-void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id, std::vector<uint8_t>& out) const {
+void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id,
+                            std::vector<uint8_t>& out) const {
   out.assign(pts.size(), 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i], first_id + i) ? 1 : 0;

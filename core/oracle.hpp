@@ -84,7 +84,8 @@ class VerticalOracle {
  public:
   // cover[i] != 0: soup triangle i takes part. ground_z: the ground level (the input's lowest
   // height); points below it are outside. Hits closer than merge_dist along a ray are one.
-  VerticalOracle(const TriangleSoup& soup, const std::vector<uint8_t>& cover, double merge_dist, double ground_z);
+  VerticalOracle(const TriangleSoup& soup, const std::vector<uint8_t>& cover, double merge_dist,
+                 double ground_z);
   ~VerticalOracle();
   VerticalOracle(const VerticalOracle&) = delete;
   VerticalOracle& operator=(const VerticalOracle&) = delete;
@@ -92,7 +93,7 @@ class VerticalOracle {
   bool valid() const { return box_.valid(); }  // some cover triangle
   // Box of the cover triangles, from the ground level up; everything outside it is outside.
   const BBox& bbox() const { return box_; }
-  bool inside(const Vec3& p) const;  // thread-safe
+  bool inside(const Vec3& p) const;                                              // thread-safe
   void classify(const std::vector<Vec3>& pts, std::vector<uint8_t>& out) const;  // parallel (TBB)
   // The volume the vote labels inside, integrated over a grid of vertical columns of about
   // `columns` columns over the cover's horizontal box (an estimate independent of the carving).

@@ -10,9 +10,9 @@ namespace mc {
 struct PreprocessParams {
   // Resolution. When cell_size <= 0 it is derived from the bounding-box diagonal:
   // cell_size = f_d * diagonal, dist_thresh = cell_size / 4 (paper §4 "automatic resolution").
-  double cell_size = 0;      // sampling interval i (model units); <= 0 means automatic
-  double dist_thresh = 0;    // δ (model units); <= 0 means cell_size / 4
-  double f_d = 0.01;         // automatic resolution factor
+  double cell_size = 0;    // sampling interval i (model units); <= 0 means automatic
+  double dist_thresh = 0;  // δ (model units); <= 0 means cell_size / 4
+  double f_d = 0.01;       // automatic resolution factor
   // Region growing (plane segmentation). <= 0 distances mean "= dist_thresh".
   double max_distance = 0;
   double max_angle_deg = 10;
@@ -21,9 +21,9 @@ struct PreprocessParams {
   // Carving.
   int min_points = 50;
   int max_points = 2000;
-  double inside_vote = 0.5;      // a cell is inside if its inside-point ratio exceeds this
-  double inconsistency = 1e-3;   // re-queue threshold, relative to the cell volume c^3 unit
-  int vote_batch = 9;            // points voting on a cell the input surface does not touch (0 = full vote)
+  double inside_vote = 0.5;     // a cell is inside if its inside-point ratio exceeds this
+  double inconsistency = 1e-3;  // re-queue threshold, relative to the cell volume c^3 unit
+  int vote_batch = 9;           // points voting on a cell the input surface does not touch (0 = full vote)
   // A cell left with only hair-blocked planes (a vertex within δ/10) is still cut by one whose
   // hair-close vertices all keep at least this distance (model units: 2 x a 1 mm output grid),
   // when at least 20% of the cell is mislabelled. 0 = never.
@@ -31,7 +31,7 @@ struct PreprocessParams {
   // Fitted planes sharing an input corner (4+ planes) are made to meet there exactly
   // (core/corner_snap.hpp). false = the paper's behaviour (planes as fitted).
   bool snap_corners = true;
-  int oracle_rays = 5;           // rays per point for the inside/outside majority vote
+  int oracle_rays = 5;  // rays per point for the inside/outside majority vote
   // An input that is a valid solid (closed, 2-manifold, outward, not self-intersecting; exact
   // predicates) is labelled by one clean ray per point instead of the vote (docs/algorithm.md §6.6).
   bool fast_path = true;
@@ -46,7 +46,7 @@ struct PreprocessParams {
   // input encloses differ by more than this fraction, the other oracle labels the carving a second
   // time and the closer result is kept; a difference that remains is reported. 0 = no check.
   double volume_check = 0.05;
-  uint64_t seed = 1;             // every random choice derives from it (determinism)
+  uint64_t seed = 1;  // every random choice derives from it (determinism)
   // "z", "y" or "auto": which input axis is vertical (NYC crops are y-up).
   std::string up_axis = "auto";
   // Disjoint interior components smaller than this fraction of the total volume are dropped
@@ -59,17 +59,17 @@ struct PreprocessParams {
 
 struct DecomposeParams {
   std::vector<double> levels{0.1, 0.01, 0.001, 0.0001};  // LoD thresholds, strictly decreasing
-  double sigma = 2.0;            // ε of cost = g + ε·h; 1 = optimal search
-  int k = 4;                     // concave edges per attached part in h
-  double concave_thresh = 1.0;   // in units of π: keep lines with angle >= concave_thresh·π
+  double sigma = 2.0;                                    // ε of cost = g + ε·h; 1 = optimal search
+  int k = 4;                                             // concave edges per attached part in h
+  double concave_thresh = 1.0;  // in units of π: keep lines with angle >= concave_thresh·π
   // Parts with V/V_CH >= cvx_thresh count as convex: no concave lines, Δ = 0 in the objective,
   // never cut, and neighbours whose union is that convex may merge. The research code reads
   // this key but never uses it (docs/algorithm.md §9.6); 1 = only exactly convex parts.
   double cvx_thresh = 0.995;
   bool with_bisector = true;
-  std::string cut_mode = "A";    // A, H, V, HV, HI, VI
-  int max_children = 64;         // best children kept per expansion (-1 = all, as RC)
-  int max_candidates = 12;       // top-K candidate planes per part by weight (0 = all)
+  std::string cut_mode = "A";  // A, H, V, HV, HI, VI
+  int max_children = 64;       // best children kept per expansion (-1 = all, as RC)
+  int max_candidates = 12;     // top-K candidate planes per part by weight (0 = all)
   // The same cap for the first level's searches (whole components; -1 = max_candidates, 0 = all).
   // There is one such search per component and every later level only refines inside its parts,
   // so a wider choice there can pay; measured mixed (docs/design.md), hence opt-in.
@@ -95,28 +95,29 @@ struct DecomposeParams {
 // Massing analytics of the written parts (pipeline/massing.hpp, docs/massing.md): contact
 // kinds, part roles and building features. Lengths in model units, angles in degrees.
 struct MassingParams {
-  double level = 0.01;                 // the LoD level whose parts give the building features
-  double ground_tolerance = 0.5;       // a part is grounded if its z_min is within this of the building's lowest z
-  double stacked_angle_deg = 10;       // a shared face within this of horizontal: stacked contact
-  double side_angle_deg = 10;          // a shared face within this of vertical: side contact (else inclined)
-  double wing_min_share = 0.2;         // grounded part >= this x the main part's volume: wing (else annex)
-  double rooftop_max_share = 0.1;      // raised part <= this x its support's volume: rooftop (else setback)
-  double roof_max_fill = 0.6;          // raised part filling <= this of its footprint x height, resting flat: roof
-  double podium_max_roof_share = 0.5;  // a tower's contact covers at most this share of the podium's footprint
-  double tower_min_slenderness = 1.0;  // a tower's height >= this x its footprint's width
-  double tower_min_height_ratio = 1.0; // a tower's height >= this x the podium's height
-  double courtyard_min_area = 10;      // footprint holes at least this large (model units^2) are courtyards
+  double level = 0.01;            // the LoD level whose parts give the building features
+  double ground_tolerance = 0.5;  // a part is grounded if its z_min is within this of the building's lowest z
+  double stacked_angle_deg = 10;  // a shared face within this of horizontal: stacked contact
+  double side_angle_deg = 10;     // a shared face within this of vertical: side contact (else inclined)
+  double wing_min_share = 0.2;    // grounded part >= this x the main part's volume: wing (else annex)
+  double rooftop_max_share = 0.1;  // raised part <= this x its support's volume: rooftop (else setback)
+  double roof_max_fill = 0.6;  // raised part filling <= this of its footprint x height, resting flat: roof
+  double podium_max_roof_share =
+      0.5;  // a tower's contact covers at most this share of the podium's footprint
+  double tower_min_slenderness = 1.0;   // a tower's height >= this x its footprint's width
+  double tower_min_height_ratio = 1.0;  // a tower's height >= this x the podium's height
+  double courtyard_min_area = 10;       // footprint holes at least this large (model units^2) are courtyards
 };
 
 struct Params {
   PreprocessParams pre;
   DecomposeParams dec;
   MassingParams massing;
-  double timeout_s = 60;         // per-building deadline; <= 0 disables
+  double timeout_s = 60;  // per-building deadline; <= 0 disables
   // Buildings with more input faces are skipped ("too large"): a mesh error or a whole terrain
   // filed as one Building would otherwise hold a worker for its whole deadline. 0 = no limit.
   int64_t max_faces = 50000;
-  int threads = 0;               // 0 = all cores
+  int threads = 0;  // 0 = all cores
 };
 
 }  // namespace mc

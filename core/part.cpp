@@ -123,7 +123,8 @@ struct RawLine {
 };
 
 // Groups edges by (plane pair, reflex) and splits each group into chains of edges sharing vertices.
-std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralEdge>& edges, bool split_chains) {
+std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralEdge>& edges,
+                                 bool split_chains) {
   const PlaneRegistry& reg = s.cx->planes();
   std::map<std::tuple<uint32_t, uint32_t, bool>, std::vector<size_t>> groups;
   for (size_t i = 0; i < edges.size(); ++i) groups[{edges[i].p1, edges[i].p2, edges[i].reflex}].push_back(i);
@@ -206,11 +207,31 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
         if (!lines[i].reflex && !lines[j].reflex) continue;
         uint32_t shared, b, c;
         Vec3 nb, nc;
-        if (L1.p1 == L2.p1 && L1.p2 != L2.p2) { shared = L1.p1; b = L1.p2; nb = L1.n2; c = L2.p2; nc = L2.n2; }
-        else if (L1.p1 == L2.p2 && L1.p2 != L2.p1) { shared = L1.p1; b = L1.p2; nb = L1.n2; c = L2.p1; nc = L2.n1; }
-        else if (L1.p2 == L2.p1 && L1.p1 != L2.p2) { shared = L1.p2; b = L1.p1; nb = L1.n1; c = L2.p2; nc = L2.n2; }
-        else if (L1.p2 == L2.p2 && L1.p1 != L2.p1) { shared = L1.p2; b = L1.p1; nb = L1.n1; c = L2.p1; nc = L2.n1; }
-        else continue;
+        if (L1.p1 == L2.p1 && L1.p2 != L2.p2) {
+          shared = L1.p1;
+          b = L1.p2;
+          nb = L1.n2;
+          c = L2.p2;
+          nc = L2.n2;
+        } else if (L1.p1 == L2.p2 && L1.p2 != L2.p1) {
+          shared = L1.p1;
+          b = L1.p2;
+          nb = L1.n2;
+          c = L2.p1;
+          nc = L2.n1;
+        } else if (L1.p2 == L2.p1 && L1.p1 != L2.p2) {
+          shared = L1.p2;
+          b = L1.p1;
+          nb = L1.n1;
+          c = L2.p2;
+          nc = L2.n2;
+        } else if (L1.p2 == L2.p2 && L1.p1 != L2.p1) {
+          shared = L1.p2;
+          b = L1.p1;
+          nb = L1.n1;
+          c = L2.p1;
+          nc = L2.n1;
+        } else continue;
         (void)shared;
         if (b == c || std::abs(dot(L1.dir, L2.dir)) < 0.95) continue;
         const Vec3 mid2 = L2.point + L2.dir * (0.5 * (L2.t0 + L2.t1));
@@ -281,7 +302,8 @@ double exit_distance(const std::vector<Plane>& hull, const Vec3& s, const Vec3& 
 
 }  // namespace
 
-PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve) {
+PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
+                          const PlaneResolver& resolve) {
   const CellComplex& cx = *s.cx;
   const PlaneRegistry& reg = cx.planes();
   const DecomposeParams& dec = *ctx.dec;
@@ -301,7 +323,8 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
       const auto loop = cx.outward_loop(side.facet, s.cells[i]);
       for (size_t k = 0; k < loop.size(); ++k) {
         const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
-        edge_uses.push_back({(uint64_t(std::min(a, b)) << 32) | std::max(a, b), {side.facet, s.cells[i], a, b}});
+        edge_uses.push_back(
+            {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), {side.facet, s.cells[i], a, b}});
         vertex_planes.push_back((uint64_t(a) << 32) | cx.facet(side.facet).plane);
       }
     }
@@ -327,7 +350,8 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   // Dihedral edges between boundary faces on different planes (2-manifold edges only).
   std::vector<DihedralEdge> edges;
   // The uses of each edge, edges in key order (deterministic), uses in boundary order.
-  std::stable_sort(edge_uses.begin(), edge_uses.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::stable_sort(edge_uses.begin(), edge_uses.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
   std::vector<Incidence> uses;
   uses.reserve(edge_uses.size());
   for (const auto& e : edge_uses) uses.push_back(e.second);
@@ -350,12 +374,14 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
     const bool reflex = dot(u1, N2) > 0;
     const double c = std::clamp(dot(N1, N2), -1.0, 1.0);
     const double angle = reflex ? M_PI + std::acos(c) : M_PI - std::acos(c);
-    DihedralEdge d{inc[0].a, inc[0].b, std::min(pa, pb), std::max(pa, pb), pa < pb ? N1 : N2, pa < pb ? N2 : N1,
-                   angle, reflex};
+    DihedralEdge d{
+        inc[0].a, inc[0].b, std::min(pa, pb), std::max(pa, pb), pa < pb ? N1 : N2, pa < pb ? N2 : N1,
+        angle,    reflex};
     edges.push_back(d);
   }
   // A vertex where two fans of faces meet is as invalid in a solid as a pinch edge.
-  info.pinch_edges += static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
+  info.pinch_edges +=
+      static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
   std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
 
@@ -411,7 +437,8 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   for (const auto& c : cands) pool.push_back(c.first);
   for (const auto& L : info.lines) {
     if (L.weight < sig) break;
-    const PlaneClass c1 = classify_plane(reg[L.p1], ctx.angle_rad), c2 = classify_plane(reg[L.p2], ctx.angle_rad);
+    const PlaneClass c1 = classify_plane(reg[L.p1], ctx.angle_rad),
+                     c2 = classify_plane(reg[L.p2], ctx.angle_rad);
     const bool horizontal_line = std::abs(L.dir.z) <= 0.1;
     auto is = [&](PlaneClass a, PlaneClass b) { return (c1 == a && c2 == b) || (c1 == b && c2 == a); };
     std::vector<Plane> extra;
@@ -428,7 +455,8 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
         vertical_through_line();
       }
     } else {
-      if (is(PlaneClass::Horizontal, PlaneClass::Inclined) || is(PlaneClass::Horizontal, PlaneClass::Horizontal)) {
+      if (is(PlaneClass::Horizontal, PlaneClass::Inclined) ||
+          is(PlaneClass::Horizontal, PlaneClass::Horizontal)) {
         vertical_through_line();
       } else if (is(PlaneClass::Inclined, PlaneClass::Inclined)) {
         extra.push_back({up, -mid.z});
@@ -448,8 +476,9 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   for (const auto& [id, w] : cands) {
     const PlaneClass pc = classify_plane(reg[id], ctx.angle_rad);
     const std::string& m = dec.cut_mode;
-    const bool keep = m == "A" || (m == "H" && pc == PlaneClass::Horizontal) || (m == "V" && pc == PlaneClass::Vertical) ||
-                      (m == "HV" && pc != PlaneClass::Inclined) || (m == "HI" && pc != PlaneClass::Vertical) ||
+    const bool keep = m == "A" || (m == "H" && pc == PlaneClass::Horizontal) ||
+                      (m == "V" && pc == PlaneClass::Vertical) || (m == "HV" && pc != PlaneClass::Inclined) ||
+                      (m == "HI" && pc != PlaneClass::Vertical) ||
                       (m == "VI" && pc != PlaneClass::Horizontal);
     if (keep) info.candidates.push_back(id);
     if (dec.max_candidates > 0 && static_cast<int>(info.candidates.size()) >= dec.max_candidates) break;

@@ -31,9 +31,9 @@ struct CellSpace {
     uint32_t facet;
     uint32_t other;  // local index of the cell across the facet, or kOut
   };
-  std::vector<std::vector<Side>> sides;          // per local cell
-  std::vector<double> volume;                    // per local cell
-  std::vector<std::vector<uint32_t>> vertices;   // per local cell: global vertex ids
+  std::vector<std::vector<Side>> sides;         // per local cell
+  std::vector<double> volume;                   // per local cell
+  std::vector<std::vector<uint32_t>> vertices;  // per local cell: global vertex ids
   size_t words() const { return (cells.size() + 63) / 64; }
   Bits all() const;
 };
@@ -54,16 +54,17 @@ struct ConcaveLine {
 // Settings that fix how parts are analysed at one LoD level.
 struct AnalysisContext {
   const DecomposeParams* dec = nullptr;
-  double dist = 0;            // δ
-  double angle_rad = 0;       // θa
-  double a_diag = 1;          // area of the input box's vertical diagonal plane
-  double level = 0;           // LoD threshold l (significance: weight >= l * a_diag)
-  BBox box;                   // the input box (snapping)
+  double dist = 0;       // δ
+  double angle_rad = 0;  // θa
+  double a_diag = 1;     // area of the input box's vertical diagonal plane
+  double level = 0;      // LoD threshold l (significance: weight >= l * a_diag)
+  BBox box;              // the input box (snapping)
 };
 
 // Maps a generated candidate plane (bisector, vertical or horizontal plane through a line) to a
 // plane id: snapping to an existing plane, registering a new one, or rejecting it (nullopt).
-using PlaneResolver = std::function<std::optional<uint32_t>(const Plane& generated, const std::vector<uint32_t>& pool)>;
+using PlaneResolver =
+    std::function<std::optional<uint32_t>(const Plane& generated, const std::vector<uint32_t>& pool)>;
 
 // A part as the analysis sees it (docs/algorithm.md §9–§10): its cells in a space, volumes, hull,
 // concave lines and candidate cutting planes. The other stages' part types: LevelPart and
@@ -74,17 +75,18 @@ struct PartAnalysis {
   size_t cell_count = 0;
   double volume = 0;
   double hull_volume = 0;
-  double delta = 0;       // Δ = V_CH − V (0 for convex parts)
-  int e_all = 0;          // concave lines with non-negligible weight
-  int e_sig = 0;          // lines significant at this level
-  int pinch_edges = 0;    // boundary edges shared by more than two boundary faces, plus pinched vertices
+  double delta = 0;            // Δ = V_CH − V (0 for convex parts)
+  int e_all = 0;               // concave lines with non-negligible weight
+  int e_sig = 0;               // lines significant at this level
+  int pinch_edges = 0;         // boundary edges shared by more than two boundary faces, plus pinched vertices
   bool nearly_convex = false;  // V/V_CH >= cvx_thresh but not exactly convex: counted as convex
-  std::vector<ConcaveLine> lines;     // reflex lines, by decreasing weight
-  std::vector<uint32_t> candidates;   // cutting planes, by decreasing weight
+  std::vector<ConcaveLine> lines;    // reflex lines, by decreasing weight
+  std::vector<uint32_t> candidates;  // cutting planes, by decreasing weight
   double convexity() const { return hull_volume > 0 ? volume / hull_volume : 0.0; }
 };
 
-PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx, const PlaneResolver& resolve);
+PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
+                          const PlaneResolver& resolve);
 
 // Whether the boundary of a set of cells has an edge used by more than two boundary facets, or
 // a vertex where two separate fans of boundary facets meet.

@@ -31,8 +31,7 @@ void BBox::add(const Vec3& p) {
 
 std::array<Vec3, 8> BBox::corners() const {
   std::array<Vec3, 8> c;
-  for (int i = 0; i < 8; ++i)
-    c[i] = {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z};
+  for (int i = 0; i < 8; ++i) c[i] = {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z};
   return c;
 }
 
@@ -78,8 +77,8 @@ size_t PlaneRegistry::num_anchored() const {
   return n;
 }
 
-uint32_t PlaneRegistry::add_snapped(Plane p, const std::vector<uint32_t>& pool, double angle_rad,
-                                    double dist, const BBox& box, PlaneOrigin origin) {
+uint32_t PlaneRegistry::add_snapped(Plane p, const std::vector<uint32_t>& pool, double angle_rad, double dist,
+                                    const BBox& box, PlaneOrigin origin) {
   if (!canonicalize(p)) throw std::invalid_argument("degenerate plane normal");
   for (uint32_t id : pool) {
     if (same_plane_in_box(p, planes_[id], angle_rad, dist, box)) return id;

@@ -96,7 +96,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   for (const auto& r : regions) region_plane.push_back(add_carve_plane(r.plane, r.bbox, r.semantic));
   // Fitted planes that share an input corner meet there exactly (else the carving may refuse
   // one of them at a hair-close vertex); the tolerance is that hair.
-  if (p.snap_corners) out.anchored_planes = snap_corners(mesh, regions, region_plane, *out.planes, 0.1 * out.dist);
+  if (p.snap_corners)
+    out.anchored_planes = snap_corners(mesh, regions, region_plane, *out.planes, 0.1 * out.dist);
   // Planes of the input's holes (missing faces), after the regions; a virtual face.
   for (const HolePlane& h : hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z)) {
     add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"));
@@ -125,13 +126,13 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   out.open_boundary_length = open.uncovered_length;
 
   const bool vertical_ok = open.vertical_applicable();
-  const bool want_vertical = p.oracle == "vertical" || (p.oracle != "parity" && out.open_input && vertical_ok);
+  const bool want_vertical =
+      p.oracle == "vertical" || (p.oracle != "parity" && out.open_input && vertical_ok);
   // (also when parity labels first but the vertical vote may label a second time, §6.5)
   if (want_vertical || (out.open_input && vertical_ok)) {
-    for (const HolePlane& h : boundary_wall_planes(open, out.dist, out.angle_rad,
-                                                   sp.min_area / std::max(out.box.hi.z - out.box.lo.z, out.dist),
-                                                   ground_z,
-                                                   out.box.hi.z)) {
+    for (const HolePlane& h : boundary_wall_planes(
+             open, out.dist, out.angle_rad, sp.min_area / std::max(out.box.hi.z - out.box.lo.z, out.dist),
+             ground_z, out.box.hi.z)) {
       // A plane the carving already has (the rest of a wall whose shared part was left out) is
       // offered where the open boundary is too: its box grows to cover it.
       bool known = false;
@@ -223,10 +224,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     l.carve = carve(
         *l.complex, cps,
         [&](const std::vector<Vec3>& pts, uint64_t first, std::vector<uint8_t>& flags) {
-          if (use_vertical)
-            vertical.classify(pts, flags);
-          else
-            oracle.classify(pts, first, flags);
+          if (use_vertical) vertical.classify(pts, flags);
+          else oracle.classify(pts, first, flags);
         },
         c, deadline);
     l.inside = l.carve.inside;
@@ -275,7 +274,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   if ((chosen.inside.empty() || disagrees) && other_possible && Clock::now() < deadline) {
     vc.relabelled = true;
     Labelling second = label(!first_vertical);
-    const bool better = !second.inside.empty() && (chosen.inside.empty() || off(second.volume) < off(chosen.volume));
+    const bool better =
+        !second.inside.empty() && (chosen.inside.empty() || off(second.volume) < off(chosen.volume));
     if (better) {
       chosen = std::move(second);
       vc.oracle = first_vertical ? "parity" : "vertical";
@@ -295,9 +295,10 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   vc.ratio = vc.estimate > 0 ? vc.cell / vc.estimate : 1.0;
   vc.flagged = p.volume_check > 0 && vc.estimate > 0 && off(vc.cell) > p.volume_check;
   if (vc.flagged)
-    out.problems.push_back("volume check: cell " + std::to_string(vc.cell) + " vs " + vc.method + " estimate " +
-                           std::to_string(vc.estimate) + " (ratio " + std::to_string(vc.ratio) + ", oracle " +
-                           vc.oracle + (vc.relabelled ? ", after a second labelling" : "") + ")");
+    out.problems.push_back("volume check: cell " + std::to_string(vc.cell) + " vs " + vc.method +
+                           " estimate " + std::to_string(vc.estimate) + " (ratio " +
+                           std::to_string(vc.ratio) + ", oracle " + vc.oracle +
+                           (vc.relabelled ? ", after a second labelling" : "") + ")");
   auto comps = connected_components(*out.complex, inside);
   double total = 0;
   std::vector<SingletonComponent> sc;

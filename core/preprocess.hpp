@@ -27,13 +27,13 @@ struct SingletonComponent {
 
 // The volume check of the singleton cell (docs/algorithm.md §6.5).
 struct VolumeCheck {
-  double estimate = -1;    // independent estimate of the volume the input encloses (< 0: none)
-  double cell = 0;         // the kept cell's volume (all components)
-  double ratio = 1;        // cell / estimate
-  std::string method;      // of the estimate: "signed volume" (closed input) or "vertical columns"
-  std::string oracle;      // the labelling kept: "parity" or "vertical"
-  bool relabelled = false; // the second labelling ran (disagreement, or no interior)
-  bool flagged = false;    // the disagreement remains beyond the threshold
+  double estimate = -1;     // independent estimate of the volume the input encloses (< 0: none)
+  double cell = 0;          // the kept cell's volume (all components)
+  double ratio = 1;         // cell / estimate
+  std::string method;       // of the estimate: "signed volume" (closed input) or "vertical columns"
+  std::string oracle;       // the labelling kept: "parity" or "vertical"
+  bool relabelled = false;  // the second labelling ran (disagreement, or no interior)
+  bool flagged = false;     // the disagreement remains beyond the threshold
 };
 
 struct Preprocessed {
@@ -42,7 +42,7 @@ struct Preprocessed {
   int up_axis = 2;
   double cell_size = 0, dist = 0;
   double angle_rad = 0;  // θa (plane classes, candidate snapping)
-  BBox box;  // bounding box of the centred, z-up input (A_diag, snapping)
+  BBox box;              // bounding box of the centred, z-up input (A_diag, snapping)
   // Held by pointer: the complex refers to the registry, so both must keep their address when a
   // Preprocessed is moved (e.g. assigned from preprocess()).
   std::unique_ptr<PlaneRegistry> planes = std::make_unique<PlaneRegistry>();
@@ -52,7 +52,7 @@ struct Preprocessed {
   std::vector<std::string> labels;             // label names (input labels)
   // Statistics.
   size_t input_faces = 0, regions = 0, cells = 0, inside_cells = 0, oracle_points = 0;
-  size_t hole_planes = 0;  // planes of planar holes of the input (core/hole_planes.hpp)
+  size_t hole_planes = 0;      // planes of planar holes of the input (core/hole_planes.hpp)
   size_t anchored_planes = 0;  // planes snapped to a shared corner (core/corner_snap.hpp)
   size_t dropped_components = 0;
   double dropped_volume = 0;

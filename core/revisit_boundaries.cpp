@@ -31,9 +31,9 @@ namespace mc::level {
 // refinement of a rejected union stays in the complex. 3-piece unions are most of the work and
 // few are improved, so the gain in parts is small for its time (docs/algorithm.md §14.1,
 // docs/design.md). Hence off by default.
-void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<LevelPart> prev, std::vector<LevelPart>& work,
-                        const AnalysisContext& ctx, const Objective& obj, Clock::time_point deadline,
-                        LevelResult& level) {
+void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector<LevelPart> prev,
+                        std::vector<LevelPart>& work, const AnalysisContext& ctx, const Objective& obj,
+                        Clock::time_point deadline, LevelResult& level) {
   CellComplex& cx = *pre.complex;
   if (prev.size() < 2 || work.size() < 3) return;
   DecomposeParams rp = p;
@@ -83,7 +83,8 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
   // Pieces sharing a facet, and the pieces' share of the level's cost (analysed once each, when
   // a union first needs it).
   std::vector<std::vector<uint32_t>> touches(work.size());
-  for (uint32_t w = 0; w < work.size(); ++w) touches[w] = neighbour_owners(cx, work[w].cells, w, lookup_in(work_of));
+  for (uint32_t w = 0; w < work.size(); ++w)
+    touches[w] = neighbour_owners(cx, work[w].cells, w, lookup_in(work_of));
   std::vector<std::optional<PartAnalysis>> piece_info(work.size());
   auto info_of = [&](uint32_t w) -> const PartAnalysis& {
     if (!piece_info[w]) {
@@ -109,7 +110,8 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
       const uint32_t w = stack.back();
       stack.pop_back();
       for (uint32_t t : touches[w])
-        if (std::find(border.begin(), border.end(), t) != border.end() && seen.insert(t).second) stack.push_back(t);
+        if (std::find(border.begin(), border.end(), t) != border.end() && seen.insert(t).second)
+          stack.push_back(t);
     }
     return seen.size() == border.size() ? border : std::vector<uint32_t>{};
   };
@@ -166,7 +168,8 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
   std::vector<LevelPart> added;
   for (const auto& [gain, i] : gains) {
     const Candidate& cd = cands[i];
-    if (std::any_of(cd.old_pieces.begin(), cd.old_pieces.end(), [&](uint32_t w) { return removed[w]; })) continue;
+    if (std::any_of(cd.old_pieces.begin(), cd.old_pieces.end(), [&](uint32_t w) { return removed[w]; }))
+      continue;
     for (uint32_t w : cd.old_pieces) removed[w] = true;
     for (const PartAnalysis& part : cd.sr.parts) {
       LevelPart nw{{}, cd.component};

@@ -23,7 +23,8 @@ struct Node {
 
 class Search {
  public:
-  Search(const SearchInput& in, const PartAnalysis& root) : in_(in), obj_(Objective::of_root(root.e_all, root.delta, *in.ctx.dec)) {
+  Search(const SearchInput& in, const PartAnalysis& root)
+      : in_(in), obj_(Objective::of_root(root.e_all, root.delta, *in.ctx.dec)) {
     for (uint32_t i = 0; i < in.pool.size(); ++i) pool_index_[in.pool[i]] = i;
     intern(root);
   }
@@ -155,9 +156,11 @@ class Search {
       PartAnalysis info;
     };
     std::vector<std::vector<Piece>> pieces(todo.size());
-    const PlaneResolver lookup = [this](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
+    const PlaneResolver lookup = [this](const Plane& g,
+                                        const std::vector<uint32_t>&) -> std::optional<uint32_t> {
       for (uint32_t id : in_.pool)
-        if (same_plane_in_box(g, in_.space->cx->planes()[id], in_.ctx.angle_rad, in_.ctx.dist, in_.ctx.box)) return id;
+        if (same_plane_in_box(g, in_.space->cx->planes()[id], in_.ctx.angle_rad, in_.ctx.dist, in_.ctx.box))
+          return id;
       return std::nullopt;
     };
     auto body = [&](size_t i) {
@@ -176,10 +179,8 @@ class Search {
       for (const Bits* side : {&a, &b})
         for (Bits& comp : components(*in_.space, *side)) {
           // The arena is read-only while the splits are computed (interning happens after).
-          if (const uint32_t id = find(comp); id != kNew)
-            pieces[i].push_back({id, {}});
-          else
-            pieces[i].push_back({kNew, analyze_part(*in_.space, std::move(comp), in_.ctx, lookup)});
+          if (const uint32_t id = find(comp); id != kNew) pieces[i].push_back({id, {}});
+          else pieces[i].push_back({kNew, analyze_part(*in_.space, std::move(comp), in_.ctx, lookup)});
         }
     };
     tbb::parallel_for(size_t(0), todo.size(), body);
@@ -188,9 +189,11 @@ class Search {
       // A cut that leaves a piece touching itself along a new edge gives no valid solid: reject
       // cuts that add pinch edges (a root that already has some may still be cut).
       int pinches = 0;
-      for (const Piece& piece : pieces[i]) pinches += (piece.known == kNew ? piece.info : arena_[piece.known]).pinch_edges;
+      for (const Piece& piece : pieces[i])
+        pinches += (piece.known == kNew ? piece.info : arena_[piece.known]).pinch_edges;
       if (pinches > arena_[todo[i].first].pinch_edges) pieces[i].clear();
-      for (Piece& piece : pieces[i]) ids.push_back(piece.known == kNew ? intern(std::move(piece.info)) : piece.known);
+      for (Piece& piece : pieces[i])
+        ids.push_back(piece.known == kNew ? intern(std::move(piece.info)) : piece.known);
       splits_[todo[i]] = std::move(ids);
     }
   }
@@ -224,7 +227,8 @@ class Search {
         fixed.push_back(p);
         continue;
       }
-      std::stable_sort(opts.begin(), opts.end(), [](const Option& a, const Option& b) { return a.dcost < b.dcost; });
+      std::stable_sort(opts.begin(), opts.end(),
+                       [](const Option& a, const Option& b) { return a.dcost < b.dcost; });
       options.push_back(std::move(opts));
       owners.push_back(p);
     }
@@ -238,7 +242,9 @@ class Search {
       size_t last;
       uint64_t order;
     };
-    auto later = [](const State& a, const State& b) { return a.sum != b.sum ? a.sum > b.sum : a.order > b.order; };
+    auto later = [](const State& a, const State& b) {
+      return a.sum != b.sum ? a.sum > b.sum : a.order > b.order;
+    };
     std::priority_queue<State, std::vector<State>, decltype(later)> heap(later);
     uint64_t order = 0;
     State s0{0, std::vector<uint32_t>(options.size(), 0), 0, order++};

@@ -17,8 +17,8 @@ namespace mc {
 
 struct SearchInput {
   const CellSpace* space = nullptr;
-  std::vector<uint32_t> pool;        // candidate planes the space was refined by
-  std::vector<Bits> positive;        // per pool plane: cells on its positive side
+  std::vector<uint32_t> pool;  // candidate planes the space was refined by
+  std::vector<Bits> positive;  // per pool plane: cells on its positive side
   AnalysisContext ctx;
   Clock::time_point deadline;
 };

@@ -258,7 +258,10 @@ std::vector<Region> merge_regions(const Workspace& ws, std::vector<Region> regio
       const double d2 = max_distance(ws, g.verts, r.plane, p.dist_thresh);
       if (d2 > p.dist_thresh) continue;
       const double d = std::max(d1, d2);
-      if (best < 0 || d < best_d) { best = static_cast<int>(gi); best_d = d; }
+      if (best < 0 || d < best_d) {
+        best = static_cast<int>(gi);
+        best_d = d;
+      }
     }
     if (best < 0) {
       groups.push_back(std::move(r));
@@ -293,7 +296,10 @@ std::vector<PlaneRegion> segment_planes(const PolygonMesh& mesh, const Segmentat
       if (mesh.faces[f].semantic >= 0) label_area[mesh.faces[f].semantic] += ws.faces[f].area;
     double best = -1;
     for (const auto& [label, a] : label_area)
-      if (a > best) { best = a; pr.semantic = label; }
+      if (a > best) {
+        best = a;
+        pr.semantic = label;
+      }
     out.push_back(std::move(pr));
   }
   std::sort(out.begin(), out.end(), [](const PlaneRegion& a, const PlaneRegion& b) {

@@ -12,12 +12,12 @@
 namespace mc {
 
 struct SegmentationParams {
-  double max_distance = 0.25;   // region growing: max vertex distance to the region plane
-  double max_angle_deg = 10;    // region growing: max unoriented face-normal angle
-  double angle_thresh_deg = 10; // θa of the near-duplicate merge
-  double dist_thresh = 0.25;    // δ of the near-duplicate merge
-  double min_area = 0;          // groups with a smaller total area are dropped (cell_size²)
-  int min_region = 1;           // minimum faces per grown region
+  double max_distance = 0.25;    // region growing: max vertex distance to the region plane
+  double max_angle_deg = 10;     // region growing: max unoriented face-normal angle
+  double angle_thresh_deg = 10;  // θa of the near-duplicate merge
+  double dist_thresh = 0.25;     // δ of the near-duplicate merge
+  double min_area = 0;           // groups with a smaller total area are dropped (cell_size²)
+  int min_region = 1;            // minimum faces per grown region
 };
 
 // Fills SegmentationParams from resolved preprocessing parameters (cell_size and dist_thresh

@@ -50,7 +50,9 @@ using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 // Constraints that cross (a bow-tie, two rings crossing) throw instead of being split: that is
 // exactly the ring self-intersection test.
-using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+using CDT =
+    CGAL::Constrained_Delaunay_triangulation_2<K, Tds,
+                                               CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
 std::string fmt(const Vec3& p) {
   std::ostringstream o;
@@ -85,7 +87,8 @@ class ErrorLog {
     std::vector<SolidError> out;
     for (const auto& [code, msg] : first_) {
       const size_t n = count_.at(code);
-      out.push_back({code, solid_error_name(code), n > 1 ? msg + " (and " + std::to_string(n - 1) + " more)" : msg});
+      out.push_back(
+          {code, solid_error_name(code), n > 1 ? msg + " (and " + std::to_string(n - 1) + " more)" : msg});
     }
     return out;
   }
@@ -100,11 +103,13 @@ std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, st
   const double cell = std::max(snap, 1e-12);
   std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
   auto key = [](int64_t x, int64_t y, int64_t z) {
-    return (static_cast<uint64_t>(x) * 73856093u) ^ (static_cast<uint64_t>(y) * 19349663u) ^ (static_cast<uint64_t>(z) * 83492791u);
+    return (static_cast<uint64_t>(x) * 73856093u) ^ (static_cast<uint64_t>(y) * 19349663u) ^
+           (static_cast<uint64_t>(z) * 83492791u);
   };
   std::vector<uint32_t> id(v.size());
   for (size_t i = 0; i < v.size(); ++i) {
-    const int64_t cx = std::llround(v[i].x / cell), cy = std::llround(v[i].y / cell), cz = std::llround(v[i].z / cell);
+    const int64_t cx = std::llround(v[i].x / cell), cy = std::llround(v[i].y / cell),
+                  cz = std::llround(v[i].z / cell);
     int64_t found = -1;
     for (int dx = -1; dx <= 1 && found < 0; ++dx)
       for (int dy = -1; dy <= 1 && found < 0; ++dy)
@@ -223,8 +228,9 @@ double signed_area_2d(const std::vector<uint32_t>& ring, const std::vector<Vec3>
 }
 
 // Triangulates one planar face with holes in its plane; ring problems go to `log`.
-void triangulate_face(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts, const Vec3& normal,
-                      size_t face, ErrorLog& log, std::vector<std::array<uint32_t, 3>>& out) {
+void triangulate_face(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
+                      const Vec3& normal, size_t face, ErrorLog& log,
+                      std::vector<std::array<uint32_t, 3>>& out) {
   const Frame f = frame_for(pts[rings[0][0]], normal);
   const std::string where = "face " + std::to_string(face);
   for (size_t r = 0; r < rings.size(); ++r) {
@@ -236,7 +242,8 @@ void triangulate_face(const std::vector<std::vector<uint32_t>>& rings, const std
       return;
     }
     if (r > 0 && signed_area_2d(rings[r], pts, f) > 0)
-      log.add(solid_code::kOrientationRingsSame, where + ": inner ring " + std::to_string(r) + " has the outer ring's orientation");
+      log.add(solid_code::kOrientationRingsSame,
+              where + ": inner ring " + std::to_string(r) + " has the outer ring's orientation");
   }
   CDT cdt;
   try {
@@ -262,7 +269,8 @@ K::Plane_3 val3dity_plane(const std::vector<K::Point_3>& pts) {
 }
 
 // val3dity's ring rule in a face's plane (104): each projected ring is a simple polygon with area.
-bool projected_rings_simple(const std::vector<std::vector<uint32_t>>& rings, const std::vector<K::Point_3>& local) {
+bool projected_rings_simple(const std::vector<std::vector<uint32_t>>& rings,
+                            const std::vector<K::Point_3>& local) {
   std::vector<K::Point_3> all;
   for (const auto& r : rings)
     for (uint32_t v : r) all.push_back(local[v]);
@@ -278,7 +286,8 @@ bool projected_rings_simple(const std::vector<std::vector<uint32_t>>& rings, con
 // val3dity's normals rule (204): the face triangulated (constrained Delaunay) in the least-squares
 // plane of its outer ring; the largest angle between the first triangle's normal and another's.
 // Negative when the rings cannot be triangulated (their crossing is reported elsewhere).
-double triangle_normals_deviation_deg(const std::vector<std::vector<uint32_t>>& rings, const std::vector<K::Point_3>& local) {
+double triangle_normals_deviation_deg(const std::vector<std::vector<uint32_t>>& rings,
+                                      const std::vector<K::Point_3>& local) {
   if (rings.size() == 1 && rings[0].size() == 3) return 0;
   std::vector<K::Point_3> outer;
   for (uint32_t v : rings[0]) outer.push_back(local[v]);
@@ -295,15 +304,14 @@ double triangle_normals_deviation_deg(const std::vector<std::vector<uint32_t>>& 
       for (size_t i = 0; i < vh.size(); ++i)
         if (vh[i] != vh[(i + 1) % vh.size()]) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
     }
-  } catch (const CDT::Intersection_of_constraints_exception&) {
-    return -1;
-  }
+  } catch (const CDT::Intersection_of_constraints_exception&) { return -1; }
   mark_domains(cdt);
   std::optional<K::Vector_3> first;
   double worst = 0;
   for (auto fh : cdt.finite_face_handles()) {
     if (fh->info().nesting % 2 != 1) continue;
-    const K::Point_3 &a = local[fh->vertex(0)->info()], &b = local[fh->vertex(1)->info()], &c = local[fh->vertex(2)->info()];
+    const K::Point_3 &a = local[fh->vertex(0)->info()], &b = local[fh->vertex(1)->info()],
+                     &c = local[fh->vertex(2)->info()];
     K::Vector_3 n = CGAL::cross_product(b - a, c - a);
     const double len = std::sqrt(n.squared_length());
     if (!(len > 0)) return 180;  // a triangle without area: its normal is anything
@@ -312,7 +320,8 @@ double triangle_normals_deviation_deg(const std::vector<std::vector<uint32_t>>& 
       first = n;
       continue;
     }
-    const double angle = std::atan2(std::sqrt(CGAL::cross_product(*first, n).squared_length()), *first * n) * 180 / M_PI;
+    const double angle =
+        std::atan2(std::sqrt(CGAL::cross_product(*first, n).squared_length()), *first * n) * 180 / M_PI;
     worst = std::max(worst, angle);
   }
   return worst;
@@ -331,12 +340,13 @@ Mesh to_mesh(const TriangleShell& s, bool& ok) {
 
 // Edge and vertex topology of the rings: closed, 2-manifold, consistently oriented, connected.
 // True when every edge is used by two faces in opposite directions.
-bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces, const std::vector<Vec3>& pts,
-                    ErrorLog& log) {
+bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces,
+                    const std::vector<Vec3>& pts, ErrorLog& log) {
   std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> directed;  // edge -> faces
   for (size_t fi = 0; fi < faces.size(); ++fi)
     for (const auto& ring : faces[fi])
-      for (size_t i = 0; i < ring.size(); ++i) directed[{ring[i], ring[(i + 1) % ring.size()]}].push_back(static_cast<uint32_t>(fi));
+      for (size_t i = 0; i < ring.size(); ++i)
+        directed[{ring[i], ring[(i + 1) % ring.size()]}].push_back(static_cast<uint32_t>(fi));
   // Faces joined by edges: connected components.
   UnionFind parts(faces.size());
   bool edges_ok = true;
@@ -349,12 +359,14 @@ bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces
       log.add(solid_code::kShellNotClosed, "edge " + edge + " bounds only face " + std::to_string(fs[0]));
       edges_ok = false;
     } else if (forward + backward > 2) {
-      log.add(solid_code::kNonManifoldCase, "edge " + edge + " is shared by " + std::to_string(forward + backward) + " faces");
+      log.add(solid_code::kNonManifoldCase,
+              "edge " + edge + " is shared by " + std::to_string(forward + backward) + " faces");
       edges_ok = false;
     } else if (forward == 2 || backward == 2) {
       const auto& two = forward == 2 ? fs : back->second;
-      log.add(solid_code::kPolygonWrongOrientation, "faces " + std::to_string(two[0]) + " and " + std::to_string(two[1]) +
-                                                        " run along edge " + edge + " in the same direction");
+      log.add(solid_code::kPolygonWrongOrientation, "faces " + std::to_string(two[0]) + " and " +
+                                                        std::to_string(two[1]) + " run along edge " + edge +
+                                                        " in the same direction");
       edges_ok = false;
     }
     std::vector<uint32_t> all = fs;
@@ -371,35 +383,52 @@ bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces
 // Vertex umbrellas: the triangle corners at a vertex must link its edges into one cycle. On the
 // faces' triangles, not their rings: a face whose hole touches its outer ring at a vertex has
 // ring corners there that are not the face's wedges around it.
-void check_vertex_fans(const std::vector<std::array<uint32_t, 3>>& triangles, const std::vector<Vec3>& pts, ErrorLog& log) {
+void check_vertex_fans(const std::vector<std::array<uint32_t, 3>>& triangles, const std::vector<Vec3>& pts,
+                       ErrorLog& log) {
   std::vector<std::array<uint32_t, 3>> corners;
   for (const auto& t : triangles)
     for (size_t i = 0; i < 3; ++i) corners.push_back({t[(i + 2) % 3], t[i], t[(i + 1) % 3]});
   for (const auto& [v, fans] : split_fans(std::move(corners)))
-    log.add(solid_code::kNonManifoldCase, "vertex " + fmt(pts[v]) + " joins " + std::to_string(fans) +
-                                              " separate fans of faces");
+    log.add(solid_code::kNonManifoldCase,
+            "vertex " + fmt(pts[v]) + " joins " + std::to_string(fans) + " separate fans of faces");
 }
 
 }  // namespace
 
 const char* solid_error_name(int code) {
   switch (code) {
-    case solid_code::kTooFewPoints: return "TOO_FEW_POINTS";
-    case solid_code::kConsecutivePointsSame: return "CONSECUTIVE_POINTS_SAME";
-    case solid_code::kRingSelfIntersection: return "RING_SELF_INTERSECTION";
-    case solid_code::kRingCollapsed: return "RING_COLLAPSED";
-    case solid_code::kIntersectionRings: return "INTERSECTION_RINGS";
-    case solid_code::kNonPlanarPolygon: return "NON_PLANAR_POLYGON_DISTANCE_PLANE";
-    case solid_code::kNonPlanarNormals: return "NON_PLANAR_POLYGON_NORMALS_DEVIATION";
-    case solid_code::kOrientationRingsSame: return "ORIENTATION_RINGS_SAME";
-    case solid_code::kTooFewPolygons: return "TOO_FEW_POLYGONS";
-    case solid_code::kShellNotClosed: return "SHELL_NOT_CLOSED";
-    case solid_code::kNonManifoldCase: return "NON_MANIFOLD_CASE";
-    case solid_code::kPolygonWrongOrientation: return "POLYGON_WRONG_ORIENTATION";
-    case solid_code::kMultipleComponents: return "MULTIPLE_CONNECTED_COMPONENTS";
-    case solid_code::kShellSelfIntersection: return "SHELL_SELF_INTERSECTION";
-    case solid_code::kAllPolygonsWrongOrientation: return "ALL_POLYGONS_WRONG_ORIENTATION";
-    default: return "UNKNOWN";
+    case solid_code::kTooFewPoints:
+      return "TOO_FEW_POINTS";
+    case solid_code::kConsecutivePointsSame:
+      return "CONSECUTIVE_POINTS_SAME";
+    case solid_code::kRingSelfIntersection:
+      return "RING_SELF_INTERSECTION";
+    case solid_code::kRingCollapsed:
+      return "RING_COLLAPSED";
+    case solid_code::kIntersectionRings:
+      return "INTERSECTION_RINGS";
+    case solid_code::kNonPlanarPolygon:
+      return "NON_PLANAR_POLYGON_DISTANCE_PLANE";
+    case solid_code::kNonPlanarNormals:
+      return "NON_PLANAR_POLYGON_NORMALS_DEVIATION";
+    case solid_code::kOrientationRingsSame:
+      return "ORIENTATION_RINGS_SAME";
+    case solid_code::kTooFewPolygons:
+      return "TOO_FEW_POLYGONS";
+    case solid_code::kShellNotClosed:
+      return "SHELL_NOT_CLOSED";
+    case solid_code::kNonManifoldCase:
+      return "NON_MANIFOLD_CASE";
+    case solid_code::kPolygonWrongOrientation:
+      return "POLYGON_WRONG_ORIENTATION";
+    case solid_code::kMultipleComponents:
+      return "MULTIPLE_CONNECTED_COMPONENTS";
+    case solid_code::kShellSelfIntersection:
+      return "SHELL_SELF_INTERSECTION";
+    case solid_code::kAllPolygonsWrongOrientation:
+      return "ALL_POLYGONS_WRONG_ORIENTATION";
+    default:
+      return "UNKNOWN";
   }
 }
 
@@ -431,11 +460,13 @@ void flip_sliver_ears(CDT& cdt, const std::vector<Vec3>& pts) {
     for (auto fh : cdt.finite_face_handles()) {
       if (fh->info().nesting % 2 != 1) continue;
       for (int i = 0; i < 3; ++i) {
-        if (cdt.is_constrained({fh, i}) || !cdt.is_constrained({fh, CDT::ccw(i)}) || !cdt.is_constrained({fh, CDT::cw(i)}))
+        if (cdt.is_constrained({fh, i}) || !cdt.is_constrained({fh, CDT::ccw(i)}) ||
+            !cdt.is_constrained({fh, CDT::cw(i)}))
           continue;
         const CDT::Face_handle n = fh->neighbor(i);
         if (cdt.is_infinite(n) || n->info().nesting % 2 != 1) continue;
-        const uint32_t a = fh->vertex(i)->info(), b = fh->vertex(CDT::ccw(i))->info(), d = fh->vertex(CDT::cw(i))->info();
+        const uint32_t a = fh->vertex(i)->info(), b = fh->vertex(CDT::ccw(i))->info(),
+                       d = fh->vertex(CDT::cw(i))->info();
         const Vec3 chord = pts[d] - pts[b];
         const double len = norm(chord);
         if (!(len > 0) || norm(cross(pts[a] - pts[b], chord)) / len > 1e-2 * len) continue;
@@ -459,8 +490,8 @@ void flip_sliver_ears(CDT& cdt, const std::vector<Vec3>& pts) {
 
 }  // namespace
 
-bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
-                                   std::vector<std::array<uint32_t, 3>>& out) {
+bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rings,
+                                   const std::vector<Vec3>& pts, std::vector<std::array<uint32_t, 3>>& out) {
   if (rings.empty() || rings[0].size() < 3) return false;
   const Vec3 n = newell(rings[0], pts);
   const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
@@ -484,9 +515,7 @@ bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rin
         CDT::Vertex_handle a = handle[ring[i]], b = handle[ring[(i + 1) % ring.size()]];
         if (a != b) cdt.insert_constraint(a, b);
       }
-  } catch (const CDT::Intersection_of_constraints_exception&) {
-    return false;
-  }
+  } catch (const CDT::Intersection_of_constraints_exception&) { return false; }
   if (cdt.number_of_vertices() != used.size()) return false;  // two points project onto one
   mark_domains(cdt);
   flip_sliver_ears(cdt, pts);
@@ -550,7 +579,8 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
       }
       if (repeats) out.bad_faces.emplace_back(fi, solid_code::kConsecutivePointsSame);
       if (ring.size() < 3) {
-        log.add(solid_code::kTooFewPoints, where + " has " + std::to_string(ring.size()) + " distinct points");
+        log.add(solid_code::kTooFewPoints,
+                where + " has " + std::to_string(ring.size()) + " distinct points");
         out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
         face_ok = false;
         continue;
@@ -565,20 +595,22 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
       for (const auto& ring : rings)
         for (uint32_t v : ring) local[v] = K::Point_3(pts[v].x - o.x, pts[v].y - o.y, pts[v].z - o.z);
       const std::string where = "face " + std::to_string(fi);
-      if (rings.size() == 1 && rings[0].size() == 3 && CGAL::collinear(local[rings[0][0]], local[rings[0][1]], local[rings[0][2]])) {
+      if (rings.size() == 1 && rings[0].size() == 3 &&
+          CGAL::collinear(local[rings[0][0]], local[rings[0][1]], local[rings[0][2]])) {
         log.add(solid_code::kRingSelfIntersection, where + ": a triangle collapsed to a line");
         out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
         continue;
       }
       if (!projected_rings_simple(rings, local)) {
-        log.add(solid_code::kRingSelfIntersection, where + ": a ring touches or crosses itself, or has no area, in the face's plane");
+        log.add(solid_code::kRingSelfIntersection,
+                where + ": a ring touches or crosses itself, or has no area, in the face's plane");
         out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
         continue;
       }
       const double dev = triangle_normals_deviation_deg(rings, local);
       if (dev > tol.normals_deg) {
-        log.add(solid_code::kNonPlanarNormals, where + ": its triangles' normals differ by " + fmt(dev) + " degrees (tolerance " +
-                                                   fmt(tol.normals_deg) + ")");
+        log.add(solid_code::kNonPlanarNormals, where + ": its triangles' normals differ by " + fmt(dev) +
+                                                   " degrees (tolerance " + fmt(tol.normals_deg) + ")");
         out.bad_faces.emplace_back(fi, solid_code::kNonPlanarNormals);
       }
     }
@@ -602,19 +634,20 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
         CDT cdt;
         try {
           insert_ring(cdt, ring, pts, frame_for(pts[ring[0]], pl.n));
-        } catch (const CDT::Intersection_of_constraints_exception&) {
-          crosses = true;
-        }
+        } catch (const CDT::Intersection_of_constraints_exception&) { crosses = true; }
       }
-      if (crosses) log.add(solid_code::kRingSelfIntersection, "face " + std::to_string(fi) + ": a ring crosses itself");
+      if (crosses)
+        log.add(solid_code::kRingSelfIntersection, "face " + std::to_string(fi) + ": a ring crosses itself");
       else log.add(solid_code::kRingCollapsed, "face " + std::to_string(fi) + ": the outer ring has no area");
-      out.bad_faces.emplace_back(fi, crosses ? solid_code::kRingSelfIntersection : solid_code::kRingCollapsed);
+      out.bad_faces.emplace_back(fi,
+                                 crosses ? solid_code::kRingSelfIntersection : solid_code::kRingCollapsed);
       continue;
     }
     if (worst > tol.planarity) out.bad_faces.emplace_back(fi, solid_code::kNonPlanarPolygon);
     if (worst > tol.planarity)
       log.add(solid_code::kNonPlanarPolygon, "face " + std::to_string(fi) + ": a point lies " + fmt(worst) +
-                                                 " m from the face's plane (tolerance " + fmt(tol.planarity) + " m)");
+                                                 " m from the face's plane (tolerance " + fmt(tol.planarity) +
+                                                 " m)");
     out.area += norm(n) / 2;
     faces.push_back(std::move(rings));
     normals.push_back(n);
@@ -623,9 +656,11 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
     for (size_t r = 1; r < faces[fi].size(); ++r) out.area -= norm(newell(faces[fi][r], pts)) / 2;
 
   // Shell (3xx): topology on the ring edges, then triangles for volume and intersections.
-  if (faces.size() < 4) log.add(solid_code::kTooFewPolygons, std::to_string(faces.size()) + " valid faces (at least 4 needed)");
+  if (faces.size() < 4)
+    log.add(solid_code::kTooFewPolygons, std::to_string(faces.size()) + " valid faces (at least 4 needed)");
   const bool edges_ok = check_topology(faces, pts, log);
-  for (size_t fi = 0; fi < faces.size(); ++fi) triangulate_face(faces[fi], pts, normals[fi], fi, log, out.shell.triangles);
+  for (size_t fi = 0; fi < faces.size(); ++fi)
+    triangulate_face(faces[fi], pts, normals[fi], fi, log, out.shell.triangles);
   if (edges_ok) check_vertex_fans(out.shell.triangles, pts, log);
 
   // Non-planarity within reason does not stop the shell checks (the faces are triangulated).
@@ -646,12 +681,14 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
   out.volume = six_v / 6;
   if (out.hull_volume > 0) out.convexity = std::min(1.0, std::max(0.0, out.volume / out.hull_volume));
   if (!(out.volume > 0))
-    log.add(solid_code::kAllPolygonsWrongOrientation, "the faces point inwards (signed volume " + fmt(out.volume) + " m³)");
+    log.add(solid_code::kAllPolygonsWrongOrientation,
+            "the faces point inwards (signed volume " + fmt(out.volume) + " m³)");
 
   bool mesh_ok = false;
   const Mesh m = to_mesh(out.shell, mesh_ok);
   if (!mesh_ok) {
-    log.add(solid_code::kShellSelfIntersection, "the triangulated faces do not form a 2-manifold surface (faces overlap in their plane)");
+    log.add(solid_code::kShellSelfIntersection,
+            "the triangulated faces do not form a 2-manifold surface (faces overlap in their plane)");
   } else {
     std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
     PMP::self_intersections(m, std::back_inserter(pairs));
@@ -664,11 +701,13 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
         }
         return fmt(c);
       };
-      log.add(solid_code::kShellSelfIntersection, std::to_string(pairs.size()) + " pairs of triangles intersect, e.g. near " +
+      log.add(solid_code::kShellSelfIntersection, std::to_string(pairs.size()) +
+                                                      " pairs of triangles intersect, e.g. near " +
                                                       tri(pairs[0].first) + " and " + tri(pairs[0].second));
     }
   }
-  out.closed_manifold = !log.has(solid_code::kShellSelfIntersection) && !log.has(solid_code::kAllPolygonsWrongOrientation);
+  out.closed_manifold =
+      !log.has(solid_code::kShellSelfIntersection) && !log.has(solid_code::kAllPolygonsWrongOrientation);
   out.errors = log.take();
   return out;
 }
@@ -677,7 +716,8 @@ namespace {
 
 // Adds the faces of `m` that bound the common part: those inside `other`, and (when
 // `take_shared`) those lying on `other`'s surface with both solids behind them.
-void add_common_faces(const Mesh& m, const Mesh& other, bool take_shared, const Vec3& o, double& six_v, double& area) {
+void add_common_faces(const Mesh& m, const Mesh& other, bool take_shared, const Vec3& o, double& six_v,
+                      double& area) {
   using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
   using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
   const Tree tree(faces(other).first, faces(other).second, other);
@@ -728,7 +768,8 @@ double sampled_common_volume(const Mesh& ma, const Mesh& mb, size_t budget) {
   for (size_t i = 0; i < n[0]; ++i)
     for (size_t j = 0; j < n[1]; ++j)
       for (size_t k = 0; k < n[2]; ++k) {
-        const K::Point_3 p(lo[0] + ext[0] * (i + 0.5) / n[0], lo[1] + ext[1] * (j + 0.5) / n[1], lo[2] + ext[2] * (k + 0.5) / n[2]);
+        const K::Point_3 p(lo[0] + ext[0] * (i + 0.5) / n[0], lo[1] + ext[1] * (j + 0.5) / n[1],
+                           lo[2] + ext[2] * (k + 0.5) / n[2]);
         both += side_a(p) == CGAL::ON_BOUNDED_SIDE && side_b(p) == CGAL::ON_BOUNDED_SIDE;
       }
   return box_volume * static_cast<double>(both) / static_cast<double>(n[0] * n[1] * n[2]);
@@ -741,9 +782,7 @@ std::optional<Common> common_volume_by_faces(const TriangleShell& a, const Trian
   const Mesh ma0 = ma, mb0 = mb;  // before corefinement, for the sampling fallback
   try {
     PMP::corefine(ma, mb);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
+  } catch (const std::exception&) { return std::nullopt; }
   // The divergence theorem needs the picked faces to close up. When near-coplanar contacts make
   // the inside/on classification of some faces unreliable they do not, and the sum then depends
   // on the origin (a 3D BAG pair read 0.97 m³ from one origin and 1.90 m³ from another, while
@@ -770,8 +809,7 @@ std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell&
     // false when the common part is not a 2-manifold (e.g. two pieces meeting at an edge).
     if (PMP::corefine_and_compute_intersection(ma, mb, common))
       return common.is_empty() ? Common{} : Common{std::abs(PMP::volume(common)), PMP::area(common)};
-  } catch (const std::exception&) {
-  }
+  } catch (const std::exception&) {}
   return common_volume_by_faces(a, b);
 }
 

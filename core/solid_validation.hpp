@@ -23,10 +23,10 @@ struct SolidError {
 // val3dity's codes used here.
 namespace solid_code {
 constexpr int kTooFewPoints = 101, kConsecutivePointsSame = 102, kRingSelfIntersection = 104,
-              kRingCollapsed = 105, kIntersectionRings = 201, kNonPlanarPolygon = 203, kNonPlanarNormals = 204,
-              kOrientationRingsSame = 208, kTooFewPolygons = 301, kShellNotClosed = 302,
-              kNonManifoldCase = 303, kPolygonWrongOrientation = 304, kMultipleComponents = 305,
-              kShellSelfIntersection = 306, kAllPolygonsWrongOrientation = 307;
+              kRingCollapsed = 105, kIntersectionRings = 201, kNonPlanarPolygon = 203,
+              kNonPlanarNormals = 204, kOrientationRingsSame = 208, kTooFewPolygons = 301,
+              kShellNotClosed = 302, kNonManifoldCase = 303, kPolygonWrongOrientation = 304,
+              kMultipleComponents = 305, kShellSelfIntersection = 306, kAllPolygonsWrongOrientation = 307;
 }
 const char* solid_error_name(int code);
 
@@ -79,8 +79,8 @@ bool triangulate_polygon(const std::vector<std::vector<uint32_t>>& rings, const 
 // arithmetic on the coordinates) and with the points inserted in index order, so that a polygon
 // and its reversed twin (the face two parts share) get the same triangles. Triangles turn like
 // the outer ring.
-bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& pts,
-                                   std::vector<std::array<uint32_t, 3>>& out);
+bool triangulate_polygon_canonical(const std::vector<std::vector<uint32_t>>& rings,
+                                   const std::vector<Vec3>& pts, std::vector<std::array<uint32_t, 3>>& out);
 // Do the points lie exactly on one plane (exact predicates on the doubles)?
 bool exactly_coplanar(const std::vector<Vec3>& pts);
 

@@ -24,8 +24,7 @@ Vec3 ring_area_vector(const std::vector<Vec3>& vertices, const std::vector<uint3
   Vec3 s;
   if (ring.size() < 3) return s;
   const Vec3 o = vertices[ring[0]];
-  for (size_t i = 1; i + 1 < ring.size(); ++i)
-    s += cross(vertices[ring[i]] - o, vertices[ring[i + 1]] - o);
+  for (size_t i = 1; i + 1 < ring.size(); ++i) s += cross(vertices[ring[i]] - o, vertices[ring[i + 1]] - o);
   return s;
 }
 
@@ -73,16 +72,14 @@ struct CellHash {
 
 // Maps every finite vertex to its cluster representative (smallest index within merge_tol,
 // transitively). Non-finite vertices map to themselves and are excluded by the caller.
-std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& vs, const std::vector<bool>& ok,
-                                     double tol) {
+std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& vs, const std::vector<bool>& ok, double tol) {
   UnionFind uf(vs.size());
   const bool exact = !(tol > 0);
   const double cell = exact ? 1.0 : tol;
   std::unordered_map<CellKey, std::vector<uint32_t>, CellHash> grid;
   grid.reserve(vs.size());
   auto key_of = [&](const Vec3& p) {
-    return CellKey{static_cast<int64_t>(std::floor(p.x / cell)),
-                   static_cast<int64_t>(std::floor(p.y / cell)),
+    return CellKey{static_cast<int64_t>(std::floor(p.x / cell)), static_cast<int64_t>(std::floor(p.y / cell)),
                    static_cast<int64_t>(std::floor(p.z / cell))};
   };
   for (uint32_t i = 0; i < vs.size(); ++i) {
@@ -127,7 +124,8 @@ PolygonMesh clean_soup(const PolygonMesh& mesh, double merge_tol, std::vector<st
   BBox box;
   for (size_t i = 0; i < nv; ++i) {
     finite[i] = is_finite(mesh.vertices[i]);
-    if (!finite[i]) ++n_nonfinite; else box.add(mesh.vertices[i]);
+    if (!finite[i]) ++n_nonfinite;
+    else box.add(mesh.vertices[i]);
   }
   const std::vector<uint32_t> rep = merge_vertices(mesh.vertices, finite, merge_tol);
   size_t n_merged = 0;
@@ -158,22 +156,32 @@ PolygonMesh clean_soup(const PolygonMesh& mesh, double merge_tol, std::vector<st
       std::vector<uint32_t> ring;
       for (uint32_t v : f.rings[r]) {
         const uint32_t m = rep[v];
-        if (!ring.empty() && ring.back() == m) { ++n_repeat; continue; }
+        if (!ring.empty() && ring.back() == m) {
+          ++n_repeat;
+          continue;
+        }
         ring.push_back(m);
       }
-      while (ring.size() > 1 && ring.front() == ring.back()) { ring.pop_back(); ++n_repeat; }
+      while (ring.size() > 1 && ring.front() == ring.back()) {
+        ring.pop_back();
+        ++n_repeat;
+      }
       std::vector<uint32_t> distinct = ring;
       std::sort(distinct.begin(), distinct.end());
       bool bad = std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3;
       if (!bad) {
         double max_edge = 0;
         for (size_t i = 0; i < ring.size(); ++i)
-          max_edge = std::max(max_edge, norm(mesh.vertices[ring[(i + 1) % ring.size()]] - mesh.vertices[ring[i]]));
+          max_edge =
+              std::max(max_edge, norm(mesh.vertices[ring[(i + 1) % ring.size()]] - mesh.vertices[ring[i]]));
         const double area = 0.5 * norm(ring_area_vector(mesh.vertices, ring));
         bad = area <= std::max(area_floor, merge_tol * max_edge);
       }
       if (bad) {
-        if (r == 0) { ++n_bad_outer; break; }
+        if (r == 0) {
+          ++n_bad_outer;
+          break;
+        }
         ++n_bad_hole;
         continue;
       }
@@ -188,7 +196,10 @@ PolygonMesh clean_soup(const PolygonMesh& mesh, double merge_tol, std::vector<st
       key.push_back(UINT32_MAX);
       key.insert(key.end(), h.begin(), h.end());
     }
-    if (!seen.insert(std::move(key)).second) { ++n_dup; continue; }
+    if (!seen.insert(std::move(key)).second) {
+      ++n_dup;
+      continue;
+    }
     kept.push_back(std::move(g));
   }
 
@@ -281,7 +292,10 @@ Vec3 fit_normal(const std::vector<Vec3>& vs, const Polygon& f) {
   Vec3 c;
   size_t k = 0;
   for (const auto& r : f.rings)
-    for (uint32_t v : r) { c += vs[v]; ++k; }
+    for (uint32_t v : r) {
+      c += vs[v];
+      ++k;
+    }
   c = c / static_cast<double>(k);
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (const auto& r : f.rings)

@@ -34,7 +34,8 @@ double signed_area_2d(const std::vector<uint32_t>& ring, const CellComplex& cx, 
   return 0.5 * a;
 }
 
-bool point_in_ring(double x, double y, const std::vector<uint32_t>& ring, const CellComplex& cx, const Projector& pr) {
+bool point_in_ring(double x, double y, const std::vector<uint32_t>& ring, const CellComplex& cx,
+                   const Projector& pr) {
   bool in = false;
   for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
     const Vec3& a = cx.point(ring[i]);
@@ -48,7 +49,8 @@ bool point_in_ring(double x, double y, const std::vector<uint32_t>& ring, const 
 }
 }  // namespace
 
-std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx,
+                                                           const std::vector<uint32_t>& cells) {
   std::unordered_set<uint32_t> in(cells.begin(), cells.end());
   std::vector<std::pair<uint32_t, uint32_t>> out;
   for (uint32_t c : cells) {
@@ -61,8 +63,8 @@ std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx
   return out;
 }
 
-std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_uses(const CellComplex& cx,
-                                                                                  const std::vector<uint32_t>& cells) {
+std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_uses(
+    const CellComplex& cx, const std::vector<uint32_t>& cells) {
   std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> uses;
   for (auto [f, c] : boundary_facets(cx, cells)) {
     const auto& loop = cx.facet(f).loop;
@@ -74,8 +76,8 @@ std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_use
   return uses;
 }
 
-Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells, const std::vector<uint32_t>* solid,
-                        const LevelSurfaceContext& level) {
+Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells,
+                        const std::vector<uint32_t>* solid, const LevelSurfaceContext& level) {
   Surface s;
   // 1. Directed boundary edges grouped by (plane, outward side, cut, neighbouring part); opposite
   //    pairs cancel, which merges coplanar facets into polygons (the complex is conforming, so
@@ -84,7 +86,8 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
   for (auto [f, c] : boundary_facets(cx, cells)) {
     const bool plus = cx.facet(f).back == c;
     const uint32_t other = cx.other_side(f, c);
-    const bool cut = solid && other != CellComplex::kNone && std::binary_search(solid->begin(), solid->end(), other);
+    const bool cut =
+        solid && other != CellComplex::kNone && std::binary_search(solid->begin(), solid->end(), other);
     uint32_t neighbour = CellComplex::kNone;
     if (cut && level.part_of)
       if (auto it = level.part_of->find(other); it != level.part_of->end()) neighbour = it->second;
@@ -123,12 +126,14 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
     const Projector pr(normal);
     auto turn = [&](uint32_t u, uint32_t v, uint32_t w) {  // signed angle u->v->w seen from outside
       const Vec3 &a = cx.point(u), &b = cx.point(v), &c = cx.point(w);
-      const double dx1 = b[pr.u] - a[pr.u], dy1 = b[pr.v] - a[pr.v], dx2 = c[pr.u] - b[pr.u], dy2 = c[pr.v] - b[pr.v];
+      const double dx1 = b[pr.u] - a[pr.u], dy1 = b[pr.v] - a[pr.v], dx2 = c[pr.u] - b[pr.u],
+                   dy2 = c[pr.v] - b[pr.v];
       return std::atan2(dx1 * dy2 - dy1 * dx2, dx1 * dx2 + dy1 * dy2);
     };
     while (true) {
       auto it = std::find_if(next.begin(), next.end(), [](const auto& kv) { return kv.second.size() == 1; });
-      if (it == next.end()) it = std::find_if(next.begin(), next.end(), [](const auto& kv) { return !kv.second.empty(); });
+      if (it == next.end())
+        it = std::find_if(next.begin(), next.end(), [](const auto& kv) { return !kv.second.empty(); });
       if (it == next.end()) break;
       const uint32_t start = it->first;
       std::vector<uint32_t> loop;
@@ -167,7 +172,8 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
   for (auto& [v, ns] : nbrs) {
     std::sort(ns.begin(), ns.end());
     ns.erase(std::unique(ns.begin(), ns.end()), ns.end());
-    if (ns.size() == 2 && cx.collinear(ns[0], v, ns[1]) && !(level.keep && level.keep->count(v))) drop.insert(v);
+    if (ns.size() == 2 && cx.collinear(ns[0], v, ns[1]) && !(level.keep && level.keep->count(v)))
+      drop.insert(v);
   }
   s.dropped.assign(drop.begin(), drop.end());
   std::sort(s.dropped.begin(), s.dropped.end());
@@ -223,7 +229,8 @@ void boundary_triangles(const CellComplex& cx, const std::vector<uint32_t>& cell
   };
   for (auto [f, c] : boundary_facets(cx, cells)) {
     const auto loop = cx.outward_loop(f, c);
-    for (size_t i = 1; i + 1 < loop.size(); ++i) triangles.push_back({index(loop[0]), index(loop[i]), index(loop[i + 1])});
+    for (size_t i = 1; i + 1 < loop.size(); ++i)
+      triangles.push_back({index(loop[0]), index(loop[i]), index(loop[i + 1])});
   }
 }
 

@@ -25,21 +25,22 @@ struct SurfaceFace {
 
 struct Surface {
   std::vector<SurfaceFace> faces;
-  size_t boundary_edges = 0;     // edges used once (0 for a closed surface)
-  size_t nonmanifold_edges = 0;  // edges used more than twice
+  size_t boundary_edges = 0;      // edges used once (0 for a closed surface)
+  size_t nonmanifold_edges = 0;   // edges used more than twice
   std::vector<uint32_t> dropped;  // vertices left out of the rings as collinear (sorted)
   bool closed() const { return boundary_edges == 0; }
 };
 
 // Boundary facets of `cells` as (facet id, cell) pairs, outward loops via cx.outward_loop.
-std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx, const std::vector<uint32_t>& cells);
+std::vector<std::pair<uint32_t, uint32_t>> boundary_facets(const CellComplex& cx,
+                                                           const std::vector<uint32_t>& cells);
 
 // `solid` (optional, sorted): the enclosing solid's cells; faces whose other side is in it are
 // cut faces (kept apart from coplanar exterior faces when merging).
 // Undirected boundary edges of `cells` (key: min << 32 | max vertex id), each with the boundary
 // facets (facet, cell) using it; more than two uses = a pinch edge (cells touching along it).
-std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_uses(const CellComplex& cx,
-                                                                                  const std::vector<uint32_t>& cells);
+std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_uses(
+    const CellComplex& cx, const std::vector<uint32_t>& cells);
 
 // Vertices where a boundary is pinched: its faces around the vertex form more than one fan
 // (joined through edges used by exactly two faces). `uses`: edge key (min << 32 | max) -> the
@@ -56,7 +57,8 @@ std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
   node.erase(std::unique(node.begin(), node.end()), node.end());
   UnionFind fans(node.size());
   auto id = [&](uint32_t v, uint32_t f) {
-    return static_cast<uint32_t>(std::lower_bound(node.begin(), node.end(), (uint64_t(v) << 32) | f) - node.begin());
+    return static_cast<uint32_t>(std::lower_bound(node.begin(), node.end(), (uint64_t(v) << 32) | f) -
+                                 node.begin());
   };
   for (const auto& [key, inc] : uses) {
     if (inc.size() != 2) continue;
@@ -83,7 +85,7 @@ std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
 // passes through them, so that no part has a T-junction where its neighbour has a corner.
 struct LevelSurfaceContext {
   const std::unordered_map<uint32_t, uint32_t>* part_of = nullptr;  // leaf cell -> part index
-  const std::unordered_set<uint32_t>* keep = nullptr;                // vertices never dropped
+  const std::unordered_set<uint32_t>* keep = nullptr;               // vertices never dropped
 };
 
 // `neighbour` of a face (SurfaceFace::neighbour): the part across a cut face when `level` is given.
@@ -93,7 +95,8 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
 // Converts a surface to a PolygonMesh in double coordinates shifted by `offset`.
 // `label_of_face(const SurfaceFace&)` gives each face its semantic label index (or -1).
 template <class LabelFn>
-PolygonMesh to_polygon_mesh(const CellComplex& cx, const Surface& s, const Vec3& offset, LabelFn label_of_face);
+PolygonMesh to_polygon_mesh(const CellComplex& cx, const Surface& s, const Vec3& offset,
+                            LabelFn label_of_face);
 
 // Triangles of the boundary facets (fans of convex facets), for measurements (Hausdorff, volume).
 void boundary_triangles(const CellComplex& cx, const std::vector<uint32_t>& cells, const Vec3& offset,
@@ -103,7 +106,8 @@ double surface_volume(const CellComplex& cx, const std::vector<uint32_t>& cells)
 
 // ---- template implementation ----
 template <class LabelFn>
-PolygonMesh to_polygon_mesh(const CellComplex& cx, const Surface& s, const Vec3& offset, LabelFn label_of_face) {
+PolygonMesh to_polygon_mesh(const CellComplex& cx, const Surface& s, const Vec3& offset,
+                            LabelFn label_of_face) {
   PolygonMesh m;
   std::vector<uint32_t> remap;
   auto index = [&](uint32_t v) {

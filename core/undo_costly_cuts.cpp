@@ -57,7 +57,8 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
   std::map<uint32_t, std::vector<uint32_t>> parts_of, prevs_of;  // group root -> level parts / previous parts
   for (uint32_t j = 0; j < work.size(); ++j) parts_of[find(first_owner[j])].push_back(j);
   for (uint32_t q = 0; q < prev.size(); ++q) prevs_of[find(q)].push_back(q);
-  if (std::none_of(parts_of.begin(), parts_of.end(), [](const auto& e) { return e.second.size() > 1; })) return;
+  if (std::none_of(parts_of.begin(), parts_of.end(), [](const auto& e) { return e.second.size() > 1; }))
+    return;
   const LevelSpace ls(cx, work);
   std::vector<PartAnalysis> info;
   double weighted = 0, volume = 0;
@@ -94,7 +95,8 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
     if (change > 1e-12) costly.emplace_back(change, g, d_weighted);
   }
   std::sort(costly.begin(), costly.end(), [](const auto& a, const auto& b) {
-    return std::get<0>(a) != std::get<0>(b) ? std::get<0>(a) > std::get<0>(b) : std::get<1>(a) < std::get<1>(b);
+    return std::get<0>(a) != std::get<0>(b) ? std::get<0>(a) > std::get<0>(b)
+                                            : std::get<1>(a) < std::get<1>(b);
   });
   std::vector<bool> restore(prev.size(), false);
   for (const auto& [change, g, lost] : costly) {

@@ -40,19 +40,27 @@ int detect_up_axis(const PolygonMesh& mesh) {
 
 Vec3 to_z_up(Vec3 v, int up) {
   switch (up) {
-    case 2: return v;
-    case 1: return {v.x, -v.z, v.y};  // +90° about x: y -> z, z -> -y
-    case 0: return {-v.z, v.y, v.x};  // -90° about y: x -> z, z -> -x
-    default: throw std::invalid_argument("to_z_up: axis must be 0, 1 or 2");
+    case 2:
+      return v;
+    case 1:
+      return {v.x, -v.z, v.y};  // +90° about x: y -> z, z -> -y
+    case 0:
+      return {-v.z, v.y, v.x};  // -90° about y: x -> z, z -> -x
+    default:
+      throw std::invalid_argument("to_z_up: axis must be 0, 1 or 2");
   }
 }
 
 Vec3 from_z_up(Vec3 v, int up) {
   switch (up) {
-    case 2: return v;
-    case 1: return {v.x, v.z, -v.y};
-    case 0: return {v.z, v.y, -v.x};
-    default: throw std::invalid_argument("from_z_up: axis must be 0, 1 or 2");
+    case 2:
+      return v;
+    case 1:
+      return {v.x, v.z, -v.y};
+    case 0:
+      return {v.z, v.y, -v.x};
+    default:
+      throw std::invalid_argument("from_z_up: axis must be 0, 1 or 2");
   }
 }
 

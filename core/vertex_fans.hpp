@@ -29,7 +29,9 @@ std::vector<std::pair<Id, size_t>> split_fans(std::vector<std::array<Id, 3>> cor
     }
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
-    auto index = [&](Id n) { return static_cast<uint32_t>(std::lower_bound(around.begin(), around.end(), n) - around.begin()); };
+    auto index = [&](Id n) {
+      return static_cast<uint32_t>(std::lower_bound(around.begin(), around.end(), n) - around.begin());
+    };
     UnionFind fans(around.size());
     for (size_t k = i; k < j; ++k) fans.link(index(corners[k][0]), index(corners[k][2]));
     size_t roots = 0;

@@ -120,8 +120,7 @@ void generic_attribute(const xmlNode* el, json& attrs) {
     if (r.ec == std::errc() && r.ptr == s.data() + s.size()) {
       if (lower == "intattribute" && v == static_cast<double>(static_cast<long long>(v)))
         add_attribute(attrs, name, static_cast<long long>(v));
-      else
-        add_attribute(attrs, name, v);
+      else add_attribute(attrs, name, v);
       return;
     }
   }

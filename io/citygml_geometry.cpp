@@ -267,10 +267,8 @@ std::optional<Solid> GeometryReader::solid(const xmlNode* el, int depth) {
       if (exterior) return std::nullopt;
       continue;
     }
-    if (exterior)
-      s.shells.insert(s.shells.begin(), std::move(shell));
-    else
-      s.shells.push_back(std::move(shell));
+    if (exterior) s.shells.insert(s.shells.begin(), std::move(shell));
+    else s.shells.push_back(std::move(shell));
   }
   if (s.shells.empty()) return std::nullopt;
   return s;

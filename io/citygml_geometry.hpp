@@ -25,7 +25,7 @@ struct Solid {
 };
 
 struct Geometry {
-  std::string type;               // CityJSON type: MultiSurface, CompositeSurface, Solid, CompositeSolid, MultiSolid
+  std::string type;  // CityJSON type: MultiSurface, CompositeSurface, Solid, CompositeSolid, MultiSolid
   std::vector<Polygon> surfaces;  // the surface types
   std::vector<Solid> solids;      // the solid types (one for Solid)
   bool is_solid() const { return !solids.empty(); }

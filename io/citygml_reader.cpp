@@ -71,8 +71,7 @@ struct CityGmlReader::Impl {
     xmlTextReaderSetStructuredErrorHandler(rd, on_xml_error, &first_error);
     try {
       int r;
-      while ((r = read(Move::Read)) == 1 && xmlTextReaderNodeType(rd) != XML_READER_TYPE_ELEMENT) {
-      }
+      while ((r = read(Move::Read)) == 1 && xmlTextReaderNodeType(rd) != XML_READER_TYPE_ELEMENT) {}
       if (r != 1) throw ReadError(p + ": no XML root element");
       const std::string_view uri = reader_uri();
       version = core_version(uri);
@@ -103,7 +102,8 @@ struct CityGmlReader::Impl {
     return r;
   }
   [[noreturn]] void fail() {
-    throw ReadError(path + ": malformed XML: " + (first_error.empty() ? std::string("unknown error") : first_error) +
+    throw ReadError(path +
+                    ": malformed XML: " + (first_error.empty() ? std::string("unknown error") : first_error) +
                     " (after " + std::to_string(buildings) + " buildings)");
   }
   xmlNode* expand() {
@@ -147,7 +147,8 @@ struct CityGmlReader::Impl {
         continue;
       }
       ++buildings;
-      citygml::ConvertedBuilding b = citygml::convert_building(expand(), "building-" + std::to_string(buildings));
+      citygml::ConvertedBuilding b =
+          citygml::convert_building(expand(), "building-" + std::to_string(buildings));
       check_srs(b);
       return std::move(b.feature);
     }
@@ -166,7 +167,8 @@ struct CityGmlReader::Impl {
     if (!first_srs) first_srs = b.srs_name;
     if (!first_lower && !b.feature.vertices.empty()) {
       mc::Vec3 lo = b.feature.vertices[0];
-      for (const auto& v : b.feature.vertices) lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      for (const auto& v : b.feature.vertices)
+        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
       first_lower = lo;
     }
     if (!b.srs_name.empty() && !reference.empty() && citygml::reference_system(b.srs_name) != reference &&
@@ -178,7 +180,8 @@ struct CityGmlReader::Impl {
     const std::string srs = !envelope_srs.empty() ? envelope_srs : first_srs.value_or("");
     reference = citygml::reference_system(srs);
     if (!srs.empty() && reference.empty())
-      problems.push_back("srsName \"" + srs + "\" is not an EPSG reference system; the output has no referenceSystem");
+      problems.push_back("srsName \"" + srs +
+                         "\" is not an EPSG reference system; the output has no referenceSystem");
     // Millimetres from a whole-metre corner: the CityJSON quantisation the writer applies.
     const mc::Vec3 corner = lower ? *lower : first_lower.value_or(mc::Vec3{0, 0, 0});
     json root = {{"type", "CityJSON"},
@@ -219,8 +222,9 @@ struct CityGmlReader::Impl {
       problems.push_back("not carried: " + std::to_string(total) + " top-level elements (" + s + ")");
     }
     if (srs_mismatches)
-      problems.push_back(std::to_string(srs_mismatches) + " buildings have an srsName other than the file's (" +
-                         srs_example + "); coordinates are used as they are");
+      problems.push_back(std::to_string(srs_mismatches) +
+                         " buildings have an srsName other than the file's (" + srs_example +
+                         "); coordinates are used as they are");
   }
 
   std::string path, first_error, version, title;

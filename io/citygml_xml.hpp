@@ -12,7 +12,8 @@ inline std::string_view local(const xmlNode* n) {
   return n && n->name ? std::string_view(reinterpret_cast<const char*>(n->name)) : std::string_view();
 }
 inline std::string_view ns_uri(const xmlNode* n) {
-  return n && n->ns && n->ns->href ? std::string_view(reinterpret_cast<const char*>(n->ns->href)) : std::string_view();
+  return n && n->ns && n->ns->href ? std::string_view(reinterpret_cast<const char*>(n->ns->href))
+                                   : std::string_view();
 }
 inline bool is_element(const xmlNode* n) { return n && n->type == XML_ELEMENT_NODE; }
 
@@ -21,7 +22,9 @@ inline bool is_gml_ns(std::string_view uri) {
   return uri == "http://www.opengis.net/gml" || uri == "http://www.opengis.net/gml/3.2";
 }
 // Any CityGML module namespace (core, building, construction, generics, ...) of any version.
-inline bool is_citygml_ns(std::string_view uri) { return uri.rfind("http://www.opengis.net/citygml/", 0) == 0; }
+inline bool is_citygml_ns(std::string_view uri) {
+  return uri.rfind("http://www.opengis.net/citygml/", 0) == 0;
+}
 inline bool is_generics_ns(std::string_view uri) {
   return is_citygml_ns(uri) && uri.find("/generics/") != std::string_view::npos;
 }
@@ -44,8 +47,9 @@ inline xmlNode* first_child(const xmlNode* n) {
 
 // An attribute without namespace ("srsName") or in one namespace; empty when absent.
 inline std::string attr(const xmlNode* n, const char* name, const char* ns = nullptr) {
-  xmlChar* v = ns ? xmlGetNsProp(n, reinterpret_cast<const xmlChar*>(name), reinterpret_cast<const xmlChar*>(ns))
-                  : xmlGetNoNsProp(n, reinterpret_cast<const xmlChar*>(name));
+  xmlChar* v =
+      ns ? xmlGetNsProp(n, reinterpret_cast<const xmlChar*>(name), reinterpret_cast<const xmlChar*>(ns))
+         : xmlGetNoNsProp(n, reinterpret_cast<const xmlChar*>(name));
   if (!v) return {};
   std::string s(reinterpret_cast<const char*>(v));
   xmlFree(v);

@@ -24,8 +24,8 @@ const std::set<std::string> kOtherKnownTypes = {"MultiPoint", "MultiLineString"}
 // One geometry of the building that can contribute faces.
 struct Candidate {
   std::string object_id;
-  size_t index = 0;           // position in the object's "geometry" array
-  const json* geom = nullptr;  // the geometry, or the template for a GeometryInstance
+  size_t index = 0;                // position in the object's "geometry" array
+  const json* geom = nullptr;      // the geometry, or the template for a GeometryInstance
   const json* instance = nullptr;  // the GeometryInstance itself, if any
   std::string type, lod;
 };
@@ -81,7 +81,8 @@ std::vector<Candidate> candidates(const Feature& f, const Header& h, ProblemLog*
       c.type = geom["type"].get<std::string>();
       if (c.type == "GeometryInstance") {
         auto t = geom.find("template");
-        if (!templates || t == geom.end() || !t->is_number_unsigned() || t->get<size_t>() >= templates->size()) {
+        if (!templates || t == geom.end() || !t->is_number_unsigned() ||
+            t->get<size_t>() >= templates->size()) {
           if (log) log->add(where + ": GeometryInstance refers to a missing geometry template; skipped");
           continue;
         }
@@ -119,24 +120,25 @@ class Assembler {
       if (auto sf = s->find("surfaces"); sf != s->end() && sf->is_array()) labels_ = &*sf;
     }
     // Nesting above the surface level: MultiSurface 0, Solid 1 (shells), Multi/CompositeSolid 2.
-    const int levels = (c.type == "Solid") ? 1 : (c.type == "MultiSolid" || c.type == "CompositeSolid") ? 2 : 0;
+    const int levels = (c.type == "Solid")                                      ? 1
+                       : (c.type == "MultiSolid" || c.type == "CompositeSolid") ? 2
+                                                                                : 0;
     walk(b, values, levels, "");
   }
 
  private:
   void walk(const json& node, const json* values, int levels, const std::string& path) {
     if (!node.is_array()) {
-      log_.add(ctx_ + (path.empty() ? "" : " " + path) + ": malformed boundaries (expected an array); skipped");
+      log_.add(ctx_ + (path.empty() ? "" : " " + path) +
+               ": malformed boundaries (expected an array); skipped");
       return;
     }
     static const char* names[] = {"surface", "shell", "solid"};
     for (size_t i = 0; i < node.size(); ++i) {
       const json* v = (values && values->is_array() && i < values->size()) ? &(*values)[i] : nullptr;
       const std::string p = (path.empty() ? "" : path + " ") + names[levels] + " " + std::to_string(i);
-      if (levels > 0)
-        walk(node[i], v, levels - 1, p);
-      else
-        add_face(node[i], v, p);
+      if (levels > 0) walk(node[i], v, levels - 1, p);
+      else add_face(node[i], v, p);
     }
   }
 
@@ -192,9 +194,11 @@ class Assembler {
       const uint32_t m = mesh_index(key, p);
       if (out.empty() || out_.mesh.vertices[out.back()] != p) out.push_back(m);
     }
-    while (out.size() > 1 && out_.mesh.vertices[out.back()] == out_.mesh.vertices[out.front()]) out.pop_back();
+    while (out.size() > 1 && out_.mesh.vertices[out.back()] == out_.mesh.vertices[out.front()])
+      out.pop_back();
     std::set<std::tuple<double, double, double>> distinct;
-    for (uint32_t m : out) distinct.emplace(out_.mesh.vertices[m].x, out_.mesh.vertices[m].y, out_.mesh.vertices[m].z);
+    for (uint32_t m : out)
+      distinct.emplace(out_.mesh.vertices[m].x, out_.mesh.vertices[m].y, out_.mesh.vertices[m].z);
     if (distinct.size() < 3) {
       why = "has fewer than 3 distinct points (degenerate)";
       return {};
@@ -255,8 +259,9 @@ class Assembler {
       if (ok_m) matrix_[i] = (*m)[i].get<double>();
     }
     if (!template_vertices_ || !ok_ref || !ok_m) {
-      log_.add(ctx_ + ": GeometryInstance needs a reference point, a 16-number transformationMatrix and "
-                      "vertices-templates; skipped");
+      log_.add(ctx_ +
+               ": GeometryInstance needs a reference point, a 16-number transformationMatrix and "
+               "vertices-templates; skipped");
       return false;
     }
     reference_ = f_.vertices[(*b)[0].get<size_t>()];
@@ -312,9 +317,10 @@ BuildingInput extract_building(const Feature& f, const Header& h, const std::str
   for (const auto& c : all) {
     // "highest" takes every geometry numerically equal to the best ("2" and "2.0" alike);
     // an explicit LoD is matched exactly, as the file writes it.
-    const bool take = lod == "highest" ? (c.lod == chosen || (lod_value(c.lod) == lod_value(chosen) &&
-                                                              std::isfinite(lod_value(chosen))))
-                                       : c.lod == chosen;
+    const bool take =
+        lod == "highest"
+            ? (c.lod == chosen || (lod_value(c.lod) == lod_value(chosen) && std::isfinite(lod_value(chosen))))
+            : c.lod == chosen;
     if (!take) {
       if (std::find(available.begin(), available.end(), c.lod) == available.end()) available.push_back(c.lod);
       continue;

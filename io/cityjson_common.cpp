@@ -28,13 +28,12 @@ Transform parse_transform(const nlohmann::json& root, const std::string& source)
   Transform t;
   auto it = root.find("transform");
   if (it == root.end() || it->is_null()) return t;
-  auto bad = [&](const std::string& why) {
-    return ReadError(source + ": invalid \"transform\": " + why);
-  };
+  auto bad = [&](const std::string& why) { return ReadError(source + ": invalid \"transform\": " + why); };
   if (!it->is_object()) throw bad("not an object");
   auto three = [&](const char* name, bool nonzero) {
     auto m = it->find(name);
-    if (m == it->end() || !m->is_array() || m->size() != 3) throw bad(std::string(name) + " must be 3 numbers");
+    if (m == it->end() || !m->is_array() || m->size() != 3)
+      throw bad(std::string(name) + " must be 3 numbers");
     mc::Vec3 v;
     double* c[3] = {&v.x, &v.y, &v.z};
     for (int i = 0; i < 3; ++i) {

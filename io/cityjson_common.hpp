@@ -72,8 +72,7 @@ namespace detail {
 // Deepest vertex-index nesting of CityJSON: MultiSolid boundaries = solids/shells/surfaces/rings.
 constexpr int kMaxBoundaryDepth = 5;
 template <class F>
-void walk_boundaries(nlohmann::json& node, int depth, const std::string& id, const std::string& where,
-                     F& f) {
+void walk_boundaries(nlohmann::json& node, int depth, const std::string& id, const std::string& where, F& f) {
   if (!node.is_array() || depth > kMaxBoundaryDepth) {
     f(node, id, where);
     return;
@@ -98,8 +97,7 @@ void for_each_vertex_ref(nlohmann::json& objects, F&& f) {
         const std::string where = "geometry #" + std::to_string(g);
         if (b->is_array())
           for (auto& child : *b) detail::walk_boundaries(child, 1, it.key(), where, f);
-        else
-          f(*b, it.key(), where);
+        else f(*b, it.key(), where);
       }
     }
     auto addr = obj.find("address");
@@ -114,8 +112,7 @@ void for_each_vertex_ref(nlohmann::json& objects, F&& f) {
         const std::string where = "address #" + std::to_string(a);
         if (b->is_array())
           for (auto& child : *b) detail::walk_boundaries(child, 1, it.key(), where, f);
-        else
-          f(*b, it.key(), where);
+        else f(*b, it.key(), where);
       }
     }
   }

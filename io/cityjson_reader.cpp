@@ -8,11 +8,11 @@
 
 namespace mc::io {
 
-namespace {
-}  // namespace
+namespace {}  // namespace
 
 CityJsonReader::CityJsonReader(const std::string& path)
-    : impl_(path == "-" || path.ends_with(".jsonl") ? open_sequence_reader(path) : open_document_reader(path)) {}
+    : impl_(path == "-" || path.ends_with(".jsonl") ? open_sequence_reader(path)
+                                                    : open_document_reader(path)) {}
 CityJsonReader::~CityJsonReader() = default;
 CityJsonReader::CityJsonReader(CityJsonReader&&) noexcept = default;
 CityJsonReader& CityJsonReader::operator=(CityJsonReader&&) noexcept = default;
@@ -26,7 +26,8 @@ Header make_header(nlohmann::json root, const std::string& source) {
   auto type = root.find("type");
   if (type == root.end() || !type->is_string() || type->get<std::string>() != "CityJSON")
     throw ReadError(source + ": not a CityJSON file (\"type\" is " +
-                    (type == root.end() ? std::string("missing") : type->dump()) + ", expected \"CityJSON\")");
+                    (type == root.end() ? std::string("missing") : type->dump()) +
+                    ", expected \"CityJSON\")");
   check_version(root, source);
   parse_transform(root, source);  // validate once here; users re-parse the cheap object
   Header h;
@@ -39,30 +40,32 @@ Header make_header(nlohmann::json root, const std::string& source) {
 void localise_vertices(Feature& out, uint64_t source_count, const VertexFetch& fetch) {
   ProblemLog log(out.problems);
   std::vector<uint64_t> refs;
-  for_each_vertex_ref(out.objects, [&](nlohmann::json& leaf, const std::string& id, const std::string& where) {
-    if (leaf.is_number_unsigned() || (leaf.is_number_integer() && leaf.get<int64_t>() >= 0)) {
-      const auto i = leaf.get<uint64_t>();
-      if (i < source_count) {
-        refs.push_back(i);
-        return;
-      }
-      log.add(id + ": " + where + ": vertex index " + std::to_string(i) + " out of range (" +
-              std::to_string(source_count) + " vertices)");
-    } else {
-      std::string text = leaf.dump();
-      if (text.size() > 40) text = text.substr(0, 40) + "...";
-      log.add(id + ": " + where + ": " + text + " is not a vertex index");
-    }
-    leaf = -1;
-  });
+  for_each_vertex_ref(
+      out.objects, [&](nlohmann::json& leaf, const std::string& id, const std::string& where) {
+        if (leaf.is_number_unsigned() || (leaf.is_number_integer() && leaf.get<int64_t>() >= 0)) {
+          const auto i = leaf.get<uint64_t>();
+          if (i < source_count) {
+            refs.push_back(i);
+            return;
+          }
+          log.add(id + ": " + where + ": vertex index " + std::to_string(i) + " out of range (" +
+                  std::to_string(source_count) + " vertices)");
+        } else {
+          std::string text = leaf.dump();
+          if (text.size() > 40) text = text.substr(0, 40) + "...";
+          log.add(id + ": " + where + ": " + text + " is not a vertex index");
+        }
+        leaf = -1;
+      });
   std::sort(refs.begin(), refs.end());
   refs.erase(std::unique(refs.begin(), refs.end()), refs.end());
   out.vertices = fetch(refs);
   std::set<std::string> reported;
-  for_each_vertex_ref(out.objects, [&](nlohmann::json& leaf, const std::string& id, const std::string& where) {
+  for_each_vertex_ref(out.objects, [&](nlohmann::json& leaf, const std::string& id,
+                                       const std::string& where) {
     if (!leaf.is_number_integer() || leaf.get<int64_t>() < 0) return;  // already reported
-    const auto local = static_cast<size_t>(
-        std::lower_bound(refs.begin(), refs.end(), leaf.get<uint64_t>()) - refs.begin());
+    const auto local =
+        static_cast<size_t>(std::lower_bound(refs.begin(), refs.end(), leaf.get<uint64_t>()) - refs.begin());
     leaf = local;
     if (!mc::is_finite(out.vertices[local]) && reported.insert(id + where).second)
       log.add(id + ": " + where + ": uses a vertex with non-finite coordinates (NaN or inf)");

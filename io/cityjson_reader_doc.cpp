@@ -66,7 +66,8 @@ class DocumentReader : public CityJsonReader::Impl {
         out.problems.push_back(id + ": cannot parse the object (" + std::string(ex.what()) + "); skipped");
       }
     }
-    localise_vertices(out, index_.vertex_count, [this](const std::vector<uint64_t>& refs) { return fetch(refs); });
+    localise_vertices(out, index_.vertex_count,
+                      [this](const std::vector<uint64_t>& refs) { return fetch(refs); });
     return true;
   }
 
@@ -123,16 +124,14 @@ class DocumentReader : public CityJsonReader::Impl {
       if (it == by_id.end())
         object_problems_[obj].push_back(std::string(index_.id(index_.objects[obj])) + ": parent \"" + name +
                                         "\" does not exist");
-      else if (parent[obj] < 0 && it->second != obj)
-        parent[obj] = it->second;
+      else if (parent[obj] < 0 && it->second != obj) parent[obj] = it->second;
     }
     for (auto& [obj, name] : index_.child_refs) {
       auto it = by_id.find(name);
       if (it == by_id.end())
         object_problems_[obj].push_back(std::string(index_.id(index_.objects[obj])) + ": child \"" + name +
                                         "\" does not exist");
-      else if (parent[it->second] < 0 && it->second != obj)
-        parent[it->second] = obj;
+      else if (parent[it->second] < 0 && it->second != obj) parent[it->second] = obj;
     }
     index_.parent_refs.clear();
     index_.parent_refs.shrink_to_fit();

@@ -33,7 +33,8 @@ class SequenceReader : public CityJsonReader::Impl {
       in_ = &file_;
     }
     std::string line;
-    if (!next_line(line)) throw ReadError(source_ + ": empty file (a CityJSONSeq starts with a CityJSON header line)");
+    if (!next_line(line))
+      throw ReadError(source_ + ": empty file (a CityJSONSeq starts with a CityJSON header line)");
     json root;
     if (nested_deeper_than(line))
       throw ReadError(source_ + ": line " + std::to_string(line_no_) + ": JSON nested deeper than " +
@@ -41,12 +42,14 @@ class SequenceReader : public CityJsonReader::Impl {
     try {
       root = json::parse(line);
     } catch (const json::exception& e) {
-      throw ReadError(source_ + ": line " + std::to_string(line_no_) +
-                      ": not a CityJSONSeq header (a CityJSONSeq starts with one CityJSON object on one line): " +
-                      short_reason(e));
+      throw ReadError(
+          source_ + ": line " + std::to_string(line_no_) +
+          ": not a CityJSONSeq header (a CityJSONSeq starts with one CityJSON object on one line): " +
+          short_reason(e));
     }
     if (!root.is_object())
-      throw ReadError(source_ + ": line " + std::to_string(line_no_) + ": not a CityJSONSeq header (not a JSON object)");
+      throw ReadError(source_ + ": line " + std::to_string(line_no_) +
+                      ": not a CityJSONSeq header (not a JSON object)");
     if (auto co = root.find("CityObjects"); co != root.end()) {
       if (co->is_object() && !co->empty())
         problems.push_back(source_ + ": the header line has " + std::to_string(co->size()) +
@@ -85,12 +88,11 @@ class SequenceReader : public CityJsonReader::Impl {
 
   bool read_feature(const std::string& line, Feature& out) {
     json doc;
-    if (nested_deeper_than(line)) return skip("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    if (nested_deeper_than(line))
+      return skip("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     try {
       doc = json::parse(line);
-    } catch (const json::exception& e) {
-      return skip("malformed JSON (" + short_reason(e) + ")");
-    }
+    } catch (const json::exception& e) { return skip("malformed JSON (" + short_reason(e) + ")"); }
     if (!doc.is_object()) return skip("not a JSON object");
     auto type = doc.find("type");
     if (type == doc.end() || *type != "CityJSONFeature")
@@ -113,7 +115,8 @@ class SequenceReader : public CityJsonReader::Impl {
     std::vector<mc::Vec3> verts = parse_vertices(doc, out);
     for (auto it = doc.begin(); it != doc.end(); ++it) {
       const std::string& k = it.key();
-      if (k != "type" && k != "id" && k != "CityObjects" && k != "vertices") out.extra[k] = std::move(it.value());
+      if (k != "type" && k != "id" && k != "CityObjects" && k != "vertices")
+        out.extra[k] = std::move(it.value());
     }
     localise_vertices(out, verts.size(), [&verts](const std::vector<uint64_t>& refs) {
       std::vector<mc::Vec3> v;

@@ -163,7 +163,8 @@ class Scanner {
       return true;
     }
     if (member_ == Member::CityObjects && depth_ == 2)
-      out_.problems.push_back("CityObject \"" + object_id_ + "\" is not a JSON object (" + v.dump() + "); skipped");
+      out_.problems.push_back("CityObject \"" + object_id_ + "\" is not a JSON object (" + v.dump() +
+                              "); skipped");
     return true;
   }
 

@@ -12,10 +12,10 @@ namespace mc::io {
 // A self-contained unit of a city: one top-level CityObject with all its descendants (a Building
 // with its BuildingParts, ...), like a CityJSONFeature.
 struct Feature {
-  std::string id;                  // the top-level object's id
-  nlohmann::json objects;          // id -> CityObject JSON as in the input, except that geometry
-                                   // "boundaries" index into `vertices` below (-1 = bad reference)
-  std::vector<mc::Vec3> vertices;  // real-world coordinates (transform already applied)
+  std::string id;                     // the top-level object's id
+  nlohmann::json objects;             // id -> CityObject JSON as in the input, except that geometry
+                                      // "boundaries" index into `vertices` below (-1 = bad reference)
+  std::vector<mc::Vec3> vertices;     // real-world coordinates (transform already applied)
   std::vector<std::string> problems;  // per-object problems found while reading
   // Other members of a CityJSONFeature line (e.g. an "appearance" local to the feature);
   // null for features read from a .city.json, where such members live in the header.

@@ -22,9 +22,7 @@ struct CityJsonWriter::Impl {
       : file(path), sequence(path.size() >= 6 && path.compare(path.size() - 6, 6, ".jsonl") == 0) {
     try {
       transform = parse_transform(header.root, path);
-    } catch (const std::exception& e) {
-      throw WriteError(e.what());
-    }
+    } catch (const std::exception& e) { throw WriteError(e.what()); }
     json root = header.root;
     root.erase("CityObjects");
     root.erase("vertices");
@@ -32,7 +30,8 @@ struct CityJsonWriter::Impl {
     root.erase("version");
     std::ostream& o = file.stream();
     o << "{\"type\":\"CityJSON\",\"version\":" << json(header.version).dump();
-    for (auto it = root.begin(); it != root.end(); ++it) o << ',' << json(it.key()).dump() << ':' << it->dump();
+    for (auto it = root.begin(); it != root.end(); ++it)
+      o << ',' << json(it.key()).dump() << ':' << it->dump();
     if (sequence) {
       o << ",\"CityObjects\":{},\"vertices\":[]}\n";
     } else {
@@ -75,10 +74,11 @@ struct CityJsonWriter::Impl {
       vertex_text(f.vertices[i], verts);
     }
     if (sequence) {
-      o << "{\"type\":\"CityJSONFeature\",\"id\":" << json(f.id).dump() << ",\"CityObjects\":" << f.objects.dump()
-        << ",\"vertices\":[" << verts << ']';
+      o << "{\"type\":\"CityJSONFeature\",\"id\":" << json(f.id).dump()
+        << ",\"CityObjects\":" << f.objects.dump() << ",\"vertices\":[" << verts << ']';
       if (f.extra.is_object())
-        for (auto it = f.extra.begin(); it != f.extra.end(); ++it) o << ',' << json(it.key()).dump() << ':' << it->dump();
+        for (auto it = f.extra.begin(); it != f.extra.end(); ++it)
+          o << ',' << json(it.key()).dump() << ':' << it->dump();
       o << "}\n";
     } else {
       json objects = f.objects;
@@ -128,18 +128,14 @@ struct CityJsonWriter::Impl {
 CityJsonWriter::CityJsonWriter(const std::string& path, const Header& header) {
   try {
     impl_ = std::make_unique<Impl>(path, header);
-  } catch (const std::system_error& e) {
-    throw WriteError(path + ": " + e.what());
-  }
+  } catch (const std::system_error& e) { throw WriteError(path + ": " + e.what()); }
 }
 CityJsonWriter::~CityJsonWriter() = default;
 void CityJsonWriter::write(const Feature& f) { impl_->write(f); }
 void CityJsonWriter::close() {
   try {
     impl_->close();
-  } catch (const std::system_error& e) {
-    throw WriteError(impl_->file.path() + ": " + e.what());
-  }
+  } catch (const std::system_error& e) { throw WriteError(impl_->file.path() + ": " + e.what()); }
 }
 size_t CityJsonWriter::features_written() const { return impl_->features; }
 size_t CityJsonWriter::dropped_extras() const { return impl_->dropped; }

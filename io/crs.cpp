@@ -46,7 +46,7 @@ struct CrsTransformer::Impl {
       return;
     }
     proj_context_set_enable_network(ctx, 0);  // never fetch grids: deterministic and offline
-    proj_log_level(ctx, PJ_LOG_NONE);        // errors are reported through error()
+    proj_log_level(ctx, PJ_LOG_NONE);         // errors are reported through error()
     const std::string id = normalize_crs(crs);
     PJ* src = proj_create(ctx, id.c_str());
     if (!src) return fail("unknown CRS '" + crs + "'");

@@ -14,7 +14,7 @@ enum class LineEnding { CRLF, LF };
 
 struct CsvOptions {
   LineEnding line_ending = LineEnding::CRLF;  // RFC 4180 says CRLF; LF for Unix tools
-  int precision = 6;                           // digits after the decimal point for doubles
+  int precision = 6;                          // digits after the decimal point for doubles
 };
 
 // `s` as one CSV field: quoted iff it contains a comma, a double quote, CR or LF; inner double
@@ -37,8 +37,7 @@ class CsvWriter {
   CsvWriter& field(double v, int precision);
   CsvWriter& field(bool v) { return raw(v ? "true" : "false"); }
   template <std::integral T>
-    requires(!std::same_as<T, bool> && !std::same_as<T, char>)
-  CsvWriter& field(T v) {
+  requires(!std::same_as<T, bool> && !std::same_as<T, char>) CsvWriter& field(T v) {
     return raw(std::to_string(v));
   }
   CsvWriter& empty() { return raw({}); }

@@ -51,9 +51,12 @@ OGRMultiPolygon to_ogr(const MultiPolygon2& mp) {
 
 OGRFieldType ogr_type(GpkgType t) {
   switch (t) {
-    case GpkgType::Integer: return OFTInteger64;
-    case GpkgType::Real: return OFTReal;
-    default: return OFTString;
+    case GpkgType::Integer:
+      return OFTInteger64;
+    case GpkgType::Real:
+      return OFTReal;
+    default:
+      return OFTString;
   }
 }
 
@@ -138,7 +141,8 @@ void GpkgWriter::add_building(const MultiPolygon2& footprint, const std::vector<
   }
   const OGRErr err = impl_->buildings->CreateFeature(f);
   OGRFeature::DestroyFeature(f);
-  if (err != OGRERR_NONE) throw WriteError(path_ + ": cannot write a building (" + CPLGetLastErrorMsg() + ")");
+  if (err != OGRERR_NONE)
+    throw WriteError(path_ + ": cannot write a building (" + CPLGetLastErrorMsg() + ")");
 }
 
 void GpkgWriter::add_part(const GpkgPart& p) {
@@ -164,11 +168,13 @@ void GpkgWriter::add_part(const GpkgPart& p) {
 }
 
 void GpkgWriter::commit() {
-  if (impl_->ds->CommitTransaction() != OGRERR_NONE) throw WriteError(path_ + ": cannot commit the GeoPackage");
+  if (impl_->ds->CommitTransaction() != OGRERR_NONE)
+    throw WriteError(path_ + ": cannot commit the GeoPackage");
   GDALDataset* ds = impl_->ds;
   impl_->ds = nullptr;
   GDALClose(ds);
-  if (std::rename(impl_->temp.c_str(), path_.c_str()) != 0) throw WriteError(path_ + ": cannot rename the GeoPackage into place");
+  if (std::rename(impl_->temp.c_str(), path_.c_str()) != 0)
+    throw WriteError(path_ + ": cannot rename the GeoPackage into place");
   impl_->committed = true;
 }
 

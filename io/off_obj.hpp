@@ -26,7 +26,8 @@ mc::PolygonMesh read_obj(const std::string& path, std::vector<std::string>* prob
 // Atomic writes (temp file + rename). OFF and OBJ have no holes: faces with holes are written as
 // one ring joined to each hole by a two-way bridge edge. `face_colours` is empty or one per face.
 // Throw WriteError.
-void write_off(const std::string& path, const mc::PolygonMesh& mesh, const std::vector<Rgb>& face_colours = {});
+void write_off(const std::string& path, const mc::PolygonMesh& mesh,
+               const std::vector<Rgb>& face_colours = {});
 // Semantic labels are written as "usemtl <label>" groups.
 void write_obj(const std::string& path, const mc::PolygonMesh& mesh);
 

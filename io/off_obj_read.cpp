@@ -39,14 +39,16 @@ struct Lines {
   double real(std::string_view t) const {
     double v = 0;
     auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (r.ec != std::errc() || r.ptr != t.data() + t.size()) throw error("\"" + std::string(t) + "\" is not a number");
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size())
+      throw error("\"" + std::string(t) + "\" is not a number");
     if (!std::isfinite(v)) throw error("non-finite coordinate \"" + std::string(t) + "\"");
     return v;
   }
   long long integer(std::string_view t) const {
     long long v = 0;
     auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (r.ec != std::errc() || r.ptr != t.data() + t.size()) throw error("\"" + std::string(t) + "\" is not an integer");
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size())
+      throw error("\"" + std::string(t) + "\" is not an integer");
     return v;
   }
 
@@ -74,7 +76,8 @@ mc::PolygonMesh read_off(const std::string& path, std::vector<std::string>* prob
   if (!lines.next(tok)) throw ReadError(path + ": empty file (expected an OFF header)");
   size_t first = 0;
   if (is_off_header(tok[0])) {
-    if (tok[0].find('4') != std::string_view::npos) throw lines.error("4D OFF (" + std::string(tok[0]) + ") is not supported");
+    if (tok[0].find('4') != std::string_view::npos)
+      throw lines.error("4D OFF (" + std::string(tok[0]) + ") is not supported");
     if (tok.size() > 1) {
       first = 1;  // counts on the header line: "OFF 8 6 0"
     } else if (!lines.next(tok)) {
@@ -90,25 +93,31 @@ mc::PolygonMesh read_off(const std::string& path, std::vector<std::string>* prob
   mesh.vertices.reserve(static_cast<size_t>(std::min<long long>(nv, 1 << 24)));
   for (long long i = 0; i < nv; ++i) {
     if (!lines.next(tok))
-      throw ReadError(path + ": file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
+      throw ReadError(path + ": file ends after " + std::to_string(i) + " of " + std::to_string(nv) +
+                      " vertices");
     if (tok.size() < 3) throw lines.error("a vertex needs 3 coordinates");
     mesh.vertices.emplace_back(lines.real(tok[0]), lines.real(tok[1]), lines.real(tok[2]));
   }
   for (long long i = 0; i < nf; ++i) {
     if (!lines.next(tok))
-      throw ReadError(path + ": file ends after " + std::to_string(i) + " of " + std::to_string(nf) + " faces");
+      throw ReadError(path + ": file ends after " + std::to_string(i) + " of " + std::to_string(nf) +
+                      " faces");
     const long long n = lines.integer(tok[0]);
     if (n < 0 || static_cast<size_t>(n) + 1 > tok.size())
-      throw lines.error("face declares " + std::to_string(n) + " vertices but lists " + std::to_string(tok.size() - 1));
+      throw lines.error("face declares " + std::to_string(n) + " vertices but lists " +
+                        std::to_string(tok.size() - 1));
     std::vector<uint32_t> ring;
     for (long long k = 1; k <= n; ++k) {
       const long long idx = lines.integer(tok[k]);
       if (idx < 0 || idx >= nv)
-        throw lines.error("vertex index " + std::to_string(idx) + " out of range (" + std::to_string(nv) + " vertices)");
+        throw lines.error("vertex index " + std::to_string(idx) + " out of range (" + std::to_string(nv) +
+                          " vertices)");
       ring.push_back(static_cast<uint32_t>(idx));
     }
     if (ring.size() < 3) {
-      if (problems) problems->push_back(path + ":" + std::to_string(lines.number) + ": face with fewer than 3 vertices skipped");
+      if (problems)
+        problems->push_back(path + ":" + std::to_string(lines.number) +
+                            ": face with fewer than 3 vertices skipped");
       continue;
     }
     mesh.faces.push_back(mc::Polygon{{std::move(ring)}, -1});
@@ -131,14 +140,17 @@ mc::PolygonMesh read_obj(const std::string& path, std::vector<std::string>* prob
         const std::string_view t = tok[k].substr(0, tok[k].find('/'));
         long long idx = lines.integer(t);
         const auto nv = static_cast<long long>(mesh.vertices.size());
-        if (idx < 0) idx += nv; else --idx;  // 1-based; negative counts back from the last vertex
+        if (idx < 0) idx += nv;
+        else --idx;  // 1-based; negative counts back from the last vertex
         if (idx < 0 || idx >= nv)
           throw lines.error("vertex reference " + std::string(t) + " out of range (" + std::to_string(nv) +
                             " vertices so far)");
         ring.push_back(static_cast<uint32_t>(idx));
       }
       if (ring.size() < 3) {
-        if (problems) problems->push_back(path + ":" + std::to_string(lines.number) + ": face with fewer than 3 vertices skipped");
+        if (problems)
+          problems->push_back(path + ":" + std::to_string(lines.number) +
+                              ": face with fewer than 3 vertices skipped");
         continue;
       }
       mesh.faces.push_back(mc::Polygon{{std::move(ring)}, label});

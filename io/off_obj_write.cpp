@@ -22,9 +22,7 @@ void write_atomically(const std::string& path, Body body) {
     AtomicFile file(path);
     body(file.stream());
     file.commit();
-  } catch (const std::system_error& e) {
-    throw WriteError(path + ": " + e.what());
-  }
+  } catch (const std::system_error& e) { throw WriteError(path + ": " + e.what()); }
 }
 
 }  // namespace
@@ -64,7 +62,8 @@ void write_off(const std::string& path, const mc::PolygonMesh& mesh, const std::
       o << ring.size();
       for (uint32_t i : ring) o << ' ' << i;
       if (!face_colours.empty())
-        o << "  " << int(face_colours[f][0]) << ' ' << int(face_colours[f][1]) << ' ' << int(face_colours[f][2]);
+        o << "  " << int(face_colours[f][0]) << ' ' << int(face_colours[f][1]) << ' '
+          << int(face_colours[f][2]);
       o << '\n';
     }
   });

@@ -25,7 +25,8 @@ using SteadyClock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr int kFormat = 3;  // 2: parts checked and repaired on the output grid (docs/output-format.md); 3: massing analytics
+constexpr int kFormat =
+    3;  // 2: parts checked and repaired on the output grid (docs/output-format.md); 3: massing analytics
 
 // Settings that do not change a complete result: worker threads, buildings in flight, logging
 // (outputs are byte-identical for any thread count). Everything else in the effective config is
@@ -101,7 +102,8 @@ json delta_of(const BuildingOutcome& out, size_t base, const json& children_befo
 void apply_entry(const json& payload, mc::io::Feature& f, BuildingOutcome& out) {
   BuildingOutcome staged;
   outcome_from_json(payload.at("outcome"), staged);
-  if (staged.status != "ok" && staged.status != "skipped") throw std::runtime_error("status " + staged.status);
+  if (staged.status != "ok" && staged.status != "skipped")
+    throw std::runtime_error("status " + staged.status);
   std::vector<Vec3> vertices;
   for (const json& v : payload.at("vertices")) {
     if (!v.is_array() || v.size() != 3) throw std::runtime_error("bad vertex");
@@ -116,7 +118,8 @@ void apply_entry(const json& payload, mc::io::Feature& f, BuildingOutcome& out) 
     if (!objects[id].is_object()) throw std::runtime_error("part " + id + " is not an object");
     mc::io::for_each_vertex_ref(objects, [&](json& leaf, const std::string&, const std::string&) {
       const int64_t v = leaf.get<int64_t>();
-      if (v < 0 || v >= static_cast<int64_t>(vertices.size())) throw std::runtime_error("vertex index out of range");
+      if (v < 0 || v >= static_cast<int64_t>(vertices.size()))
+        throw std::runtime_error("vertex index out of range");
       leaf = v + base;
     });
     parts.emplace_back(std::move(id), std::move(objects.begin().value()));
@@ -131,14 +134,16 @@ void apply_entry(const json& payload, mc::io::Feature& f, BuildingOutcome& out) 
 
   // Commit (nothing below throws on these checked values).
   f.vertices.insert(f.vertices.end(), vertices.begin(), vertices.end());
-  if (children_array && (!b->contains("children") || !(*b)["children"].is_array())) (*b)["children"] = json::array();
+  if (children_array && (!b->contains("children") || !(*b)["children"].is_array()))
+    (*b)["children"] = json::array();
   for (auto& [id, obj] : parts) {
     (*b)["children"].push_back(id);
     f.objects[id] = std::move(obj);
   }
   if (!attributes.empty()) {
     if (!b->contains("attributes") || !(*b)["attributes"].is_object()) (*b)["attributes"] = json::object();
-    for (auto it = attributes.begin(); it != attributes.end(); ++it) (*b)["attributes"][it.key()] = it.value();
+    for (auto it = attributes.begin(); it != attributes.end(); ++it)
+      (*b)["attributes"][it.key()] = it.value();
   }
   out.status = std::move(staged.status);
   out.reason = std::move(staged.reason);
@@ -146,7 +151,7 @@ void apply_entry(const json& payload, mc::io::Feature& f, BuildingOutcome& out) 
   out.size = staged.size;
   out.levels = std::move(staged.levels);
   out.measures = std::move(staged.measures);
-  out.massing = std::move(staged.massing);  // massing analytics (pipeline/massing.hpp)
+  out.massing = std::move(staged.massing);            // massing analytics (pipeline/massing.hpp)
   out.volume_check = std::move(staged.volume_check);  // the cell's volume check (docs/algorithm.md §6.5)
   out.hausdorff = staged.hausdorff;
   out.problems = std::move(staged.problems);
@@ -162,8 +167,8 @@ BuildingCache::BuildingCache(std::string dir, const mc::io::Header& h, const Par
   json header_facts = {{"version", h.version}};
   for (const char* k : {"transform", "geometry-templates"})
     if (h.root.contains(k)) header_facts[k] = h.root[k];
-  context_ = "morphcut-city cache " + std::to_string(kFormat) + "\n" MC_VERSION "\n" + key_config(p, rc).dump() +
-             "\n" + header_facts.dump() + "\n";
+  context_ = "morphcut-city cache " + std::to_string(kFormat) + "\n" MC_VERSION "\n" +
+             key_config(p, rc).dump() + "\n" + header_facts.dump() + "\n";
   transform_ = mc::io::parse_transform(h.root, "header");
 }
 
@@ -182,7 +187,8 @@ std::string BuildingCache::key_of(const mc::io::Feature& f) const {
         return;
       }
       const Vec3& v = f.vertices[leaf.get<size_t>()];
-      leaf = json::array({grid(v.x, t.scale.x, t.translate.x, t.present), grid(v.y, t.scale.y, t.translate.y, t.present),
+      leaf = json::array({grid(v.x, t.scale.x, t.translate.x, t.present),
+                          grid(v.y, t.scale.y, t.translate.y, t.present),
                           grid(v.z, t.scale.z, t.translate.z, t.present)});
     });
     canon.push_back(std::move(wrapper.begin().value()));
@@ -216,8 +222,10 @@ BuildingOutcome BuildingCache::run(mc::io::Feature&& f, const mc::io::Header& h,
       std::string body = text.substr(nl + 1);
       if (!body.empty() && body.back() == '\n') body.pop_back();
       if (head.at("format").get<int>() != kFormat) throw std::runtime_error("unknown format");
-      if (head.at("key").get<std::string>() != key) throw std::runtime_error("key does not match the file name");
-      if (head.at("sha256").get<std::string>() != sha256_hex(body)) throw std::runtime_error("checksum mismatch");
+      if (head.at("key").get<std::string>() != key)
+        throw std::runtime_error("key does not match the file name");
+      if (head.at("sha256").get<std::string>() != sha256_hex(body))
+        throw std::runtime_error("checksum mismatch");
       BuildingOutcome out;
       out.id = f.id;
       out.is_building = true;
@@ -229,8 +237,8 @@ BuildingOutcome BuildingCache::run(mc::io::Feature&& f, const mc::io::Header& h,
     }
   } catch (const std::exception& e) {
     ++corrupt_;
-    std::fprintf(stderr, "morphcut-city: cache: ignoring entry %s (%s); recomputing %s\n", path.c_str(), e.what(),
-                 f.id.c_str());
+    std::fprintf(stderr, "morphcut-city: cache: ignoring entry %s (%s); recomputing %s\n", path.c_str(),
+                 e.what(), f.id.c_str());
   }
 
   ++misses_;

@@ -14,9 +14,7 @@ constexpr int kExitUsage = 2;
 inline std::optional<int> parse_or_exit(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : kExitUsage;
-  }
+  } catch (const CLI::ParseError& e) { return app.exit(e) == 0 ? 0 : kExitUsage; }
   return std::nullopt;
 }
 

@@ -13,9 +13,7 @@ namespace mc::pipeline {
 GraphWriter::GraphWriter(const std::string& path) : path_(path) {
   try {
     file_ = std::make_unique<mc::io::AtomicFile>(path);
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(path + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(path + ": " + e.what()); }
 }
 
 GraphWriter::~GraphWriter() = default;
@@ -27,9 +25,7 @@ void GraphWriter::add(const BuildingOutcome& b) {
 void GraphWriter::commit() {
   try {
     file_->commit();
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(path_ + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(path_ + ": " + e.what()); }
 }
 
 namespace {
@@ -37,16 +33,26 @@ namespace {
 // as the CSV writes them, text for every other column (a column added to the CSV later is text
 // until it is named here).
 std::vector<mc::io::GpkgColumn> gpkg_columns(const std::vector<double>& thresholds) {
-  static const std::set<std::string> reals = {"height", "footprint_area", "volume", "convexity", "mean_part_convexity",
-                                              "largest_part_share", "centroid_x", "centroid_y", "centroid_z", "lon",
-                                              "lat", "morphcut_massing_level", "volume_check_ratio"};
+  static const std::set<std::string> reals = {"height",
+                                              "footprint_area",
+                                              "volume",
+                                              "convexity",
+                                              "mean_part_convexity",
+                                              "largest_part_share",
+                                              "centroid_x",
+                                              "centroid_y",
+                                              "centroid_z",
+                                              "lon",
+                                              "lat",
+                                              "morphcut_massing_level",
+                                              "volume_check_ratio"};
   static const std::set<std::string> texts = {"morphcut_tower_on_podium"};
   std::vector<mc::io::GpkgColumn> cols;
   for (const auto& name : summary_columns(thresholds)) {
     mc::io::GpkgType t = mc::io::GpkgType::Text;
     if (reals.count(name)) t = mc::io::GpkgType::Real;
-    else if (!texts.count(name) && (name.rfind("parts_", 0) == 0 || name == "max_degree" || name == "end_parts" ||
-                                    name.rfind("morphcut_", 0) == 0))
+    else if (!texts.count(name) && (name.rfind("parts_", 0) == 0 || name == "max_degree" ||
+                                    name == "end_parts" || name.rfind("morphcut_", 0) == 0))
       t = mc::io::GpkgType::Integer;
     cols.push_back({name, t});
   }
@@ -54,8 +60,10 @@ std::vector<mc::io::GpkgColumn> gpkg_columns(const std::vector<double>& threshol
 }
 }  // namespace
 
-MassingGpkgWriter::MassingGpkgWriter(const std::string& path, const std::string& crs, std::vector<double> thresholds)
-    : thresholds_(std::move(thresholds)), columns_(gpkg_columns(thresholds_)),
+MassingGpkgWriter::MassingGpkgWriter(const std::string& path, const std::string& crs,
+                                     std::vector<double> thresholds)
+    : thresholds_(std::move(thresholds)),
+      columns_(gpkg_columns(thresholds_)),
       gpkg_(std::make_unique<mc::io::GpkgWriter>(path, crs, columns_)) {}
 
 MassingGpkgWriter::~MassingGpkgWriter() = default;
@@ -71,7 +79,8 @@ void MassingGpkgWriter::add(const BuildingOutcome& b) {
       const double x = std::strtod(c.text.c_str(), &end);  // the CSV's rounding
       const bool number = end && *end == '\0' && !c.text.empty();
       if (columns_[i].type == mc::io::GpkgType::Text) v.text = c.text;
-      else if (columns_[i].type == mc::io::GpkgType::Integer && c.kind == SummaryCell::Integer) v.integer = c.integer;
+      else if (columns_[i].type == mc::io::GpkgType::Integer && c.kind == SummaryCell::Integer)
+        v.integer = c.integer;
       else if (number) v.real = x;
       else v.text = c.text;
     }

@@ -7,7 +7,7 @@ namespace mc::pipeline::html_assets {
 extern const char kPageHtml[];  // the page with @TITLE@ @CSS@ @DATA@ @THREE@ @JS@ placeholders
 extern const char kPageCss[];
 extern const char kPageJs[];
-extern const char kThreeJs[];   // empty when the build had no bundle
+extern const char kThreeJs[];  // empty when the build had no bundle
 extern const bool kHasThree;
 
 }  // namespace mc::pipeline::html_assets

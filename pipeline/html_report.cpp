@@ -36,7 +36,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMm = 1000.0;  // 3D vertices: millimetre grid
 constexpr double kDm = 10.0;    // plan footprints: decimetre grid
 
-
 template <class J>
 const J& member(const J& j, const char* key) {
   static const J null_value;
@@ -66,9 +65,7 @@ ojson read_json_file(const std::string& path) {
   ss << in.rdbuf();
   try {
     return ojson::parse(ss.str());
-  } catch (const std::exception& e) {
-    throw mc::io::ReadError(path + ": not valid JSON (" + e.what() + ")");
-  }
+  } catch (const std::exception& e) { throw mc::io::ReadError(path + ": not valid JSON (" + e.what() + ")"); }
 }
 
 // A path as written in a report: as it is when it exists, else beside the report.
@@ -78,10 +75,13 @@ std::string resolve_beside(const std::string& path, const std::string& report_pa
   return fs::exists(beside) ? beside.string() : path;
 }
 
-bool is_merged(const ojson& report) { return string_or(member(report, "tool")) == "morphcut-city merge-reports"; }
+bool is_merged(const ojson& report) {
+  return string_or(member(report, "tool")) == "morphcut-city merge-reports";
+}
 
 // The city files of one run report (not merged).
-void run_report_city_files(const ojson& report, const std::string& report_path, std::vector<std::string>& out) {
+void run_report_city_files(const ojson& report, const std::string& report_path,
+                           std::vector<std::string>& out) {
   const ojson& outputs = member(report, "outputs");
   auto add = [&](const ojson& p) {
     if (!p.is_string() || p.get<std::string>().empty()) return;
@@ -106,11 +106,20 @@ std::string html_escape(const std::string& s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '&':
+        o += "&amp;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      default:
+        o += c;
     }
   }
   return o;
@@ -301,7 +310,8 @@ void read_report(const std::string& path, Page& page) {
                        {"counts", member(t, "counts")},
                        {"wall_seconds", member(t, "wall_seconds")},
                        {"config_sha256", member(t, "config_sha256")}});
-      if (member(t, "config_sha256").is_string()) configs.insert(member(t, "config_sha256").get<std::string>());
+      if (member(t, "config_sha256").is_string())
+        configs.insert(member(t, "config_sha256").get<std::string>());
     }
     meta["tiles"] = tiles;
     meta["missing_tiles"] = member(report, "missing_tiles");
@@ -310,7 +320,7 @@ void read_report(const std::string& path, Page& page) {
     meta["duplicates"] = member(totals, "duplicate_ids");
   } else {
     const ojson& input = member(report, "input");
-    meta["input"] = {{"path", member(input, "path")},     {"format", member(input, "format")},
+    meta["input"] = {{"path", member(input, "path")},       {"format", member(input, "format")},
                      {"version", member(input, "version")}, {"crs", member(input, "crs")},
                      {"bytes", member(input, "bytes")},     {"sha256", member(input, "sha256")}};
     meta["config_file"] = member(report, "config_file");
@@ -372,7 +382,8 @@ void rank_3d(Page& page, size_t bound) {
     const auto& c = bs[i].convexity;
     return c.empty() || !std::isfinite(c.rbegin()->second) ? 2.0 : c.rbegin()->second;
   };
-  std::stable_sort(convex.begin(), convex.end(), [&](size_t a, size_t b) { return finest_cvx(a) < finest_cvx(b); });
+  std::stable_sort(convex.begin(), convex.end(),
+                   [&](size_t a, size_t b) { return finest_cvx(a) < finest_cvx(b); });
   for (size_t k = 0; k < bs.size(); ++k) take(slow[k]), take(convex[k]);
   for (size_t r = 0; r < ranked.size(); ++r) {
     bs[ranked[r]].rank = r;
@@ -415,8 +426,10 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
     if (!b.from_report) {
       if (b.status.empty() && member(battr, "morphcut_status").is_string()) {
         b.status = member(battr, "morphcut_status").get<std::string>();
-        if (member(battr, "morphcut_reason").is_string()) b.reason = member(battr, "morphcut_reason").get<std::string>();
-        if (member(battr, "morphcut_hausdorff").is_number()) b.hausdorff = member(battr, "morphcut_hausdorff").get<double>();
+        if (member(battr, "morphcut_reason").is_string())
+          b.reason = member(battr, "morphcut_reason").get<std::string>();
+        if (member(battr, "morphcut_hausdorff").is_number())
+          b.hausdorff = member(battr, "morphcut_hausdorff").get<double>();
         const json& ps = member(battr, "morphcut_parts");
         const json& ls = member(battr, "morphcut_levels");
         if (ps.is_array() && ls.is_array())
@@ -430,7 +443,8 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
     // Parts: BuildingParts with morphcut_level, each level from the first file that has it.
     for (auto it = f.objects.begin(); it != f.objects.end(); ++it) {
       // (A per-level file also marks the Building itself with the level it shows.)
-      if (!member(it.value(), "type").is_string() || member(it.value(), "type").get<std::string>() != "BuildingPart")
+      if (!member(it.value(), "type").is_string() ||
+          member(it.value(), "type").get<std::string>() != "BuildingPart")
         continue;
       const json& attr = member(it.value(), "attributes");
       const json& level = member(attr, "morphcut_level");
@@ -440,7 +454,8 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
       if (!fresh && lf->second != file_index) continue;
       new_levels.insert(t);
       const double volume = member(attr, "volume").is_number() ? member(attr, "volume").get<double>() : 0.0;
-      const double cvx = member(attr, "convexity").is_number() ? member(attr, "convexity").get<double>() : kNaN;
+      const double cvx =
+          member(attr, "convexity").is_number() ? member(attr, "convexity").get<double>() : kNaN;
       const json& role = member(attr, "morphcut_role");
       // The building's role: that of its largest part at the coarsest level.
       if (role.is_string() && (!std::isfinite(b.role_level) || t > b.role_level ||
@@ -457,10 +472,11 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
       for (const auto& rings : part_faces(it.value(), f.vertices)) b.geo->add_face(faces, rings);
       const json& nb = member(attr, "neighbours");
       ojson& lvl = b.geo->levels.try_emplace(t, ojson::array()).first->second;
-      lvl.push_back(ojson::array({member(attr, "morphcut_index").is_number() ? ojson(member(attr, "morphcut_index")) : ojson(lvl.size()),
-                                  rounded(volume, 1e-3), rounded(cvx, 1e-4), nb.is_array() ? nb.size() : 0,
-                                  role.is_string() ? ojson(role.get<std::string>()) : ojson(nullptr), it.key(),
-                                  std::move(faces)}));
+      lvl.push_back(ojson::array(
+          {member(attr, "morphcut_index").is_number() ? ojson(member(attr, "morphcut_index"))
+                                                      : ojson(lvl.size()),
+           rounded(volume, 1e-3), rounded(cvx, 1e-4), nb.is_array() ? nb.size() : 0,
+           role.is_string() ? ojson(role.get<std::string>()) : ojson(nullptr), it.key(), std::move(faces)}));
     }
     // The input ghost and footprint: the building's own geometry without morphcut parts.
     if (!b.ghost_done) {
@@ -491,7 +507,8 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
   page.levels.assign(all.rbegin(), all.rend());
 }
 
-ojson level_array(const std::map<double, double, std::greater<>>& m, const std::vector<double>& levels, double step) {
+ojson level_array(const std::map<double, double, std::greater<>>& m, const std::vector<double>& levels,
+                  double step) {
   ojson a = ojson::array();
   for (double t : levels) {
     auto it = m.find(t);
@@ -548,8 +565,10 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
       auto it = g.levels.find(t);
       levels.push_back(it == g.levels.end() ? ojson(nullptr) : std::move(it->second));
     }
-    const ojson origin = {rounded(lo[0] / kMm - ox, 1e-3), rounded(lo[1] / kMm - oy, 1e-3), rounded(lo[2] / kMm, 1e-3)};
-    geo_json[i] = {{"o", origin}, {"v", std::move(verts)}, {"ghost", std::move(g.ghost)}, {"l", std::move(levels)}};
+    const ojson origin = {rounded(lo[0] / kMm - ox, 1e-3), rounded(lo[1] / kMm - oy, 1e-3),
+                          rounded(lo[2] / kMm, 1e-3)};
+    geo_json[i] = {
+        {"o", origin}, {"v", std::move(verts)}, {"ghost", std::move(g.ghost)}, {"l", std::move(levels)}};
     b.geo.reset();
     with_geo.push_back(i);
   }
@@ -616,21 +635,25 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
   meta["levels"] = page.levels;
   meta["origin"] = {ox, oy};
   meta["crs"] = member(member(meta, "input"), "crs");
-  meta["bound"] = {{"max_3d", opt.max_3d_buildings},
-                   {"max_3d_mb", static_cast<double>(opt.max_3d_bytes) / 1e6},
-                   {"with_3d", with_3d},
-                   {"over_budget", over_budget},
-                   {"max_footprints", opt.max_footprints},
-                   {"footprints", footprints},
-                   {"footprints_capped", !draw_footprints},
-                   {"rule", page.buildings.size() <= opt.max_3d_buildings && over_budget == 0
-                                ? "every building"
-                                : "failed and partial buildings first, then the slowest and the least convex at "
-                                  "the finest level alternately"}};
+  meta["bound"] = {
+      {"max_3d", opt.max_3d_buildings},
+      {"max_3d_mb", static_cast<double>(opt.max_3d_bytes) / 1e6},
+      {"with_3d", with_3d},
+      {"over_budget", over_budget},
+      {"max_footprints", opt.max_footprints},
+      {"footprints", footprints},
+      {"footprints_capped", !draw_footprints},
+      {"rule", page.buildings.size() <= opt.max_3d_buildings && over_budget == 0
+                   ? "every building"
+                   : "failed and partial buildings first, then the slowest and the least convex at "
+                     "the finest level alternately"}};
   meta["roles"] = roles;
   meta["three"] = html_assets::kHasThree;
   meta["warnings"] = page.warnings;
-  return ojson{{"format", 1}, {"meta", meta}, {"tiles", tiles}, {"buildings", std::move(rows)},
+  return ojson{{"format", 1},
+               {"meta", meta},
+               {"tiles", tiles},
+               {"buildings", std::move(rows)},
                {"geometry", std::move(geometry)}};
 }
 
@@ -646,9 +669,7 @@ std::vector<std::string> city_files_of_report(const std::string& report_json_pat
   ojson report;
   try {
     report = read_json_file(report_json_path);
-  } catch (const std::exception&) {
-    return out;
-  }
+  } catch (const std::exception&) { return out; }
   if (!is_merged(report)) {
     run_report_city_files(report, report_json_path, out);
     return out;
@@ -657,13 +678,13 @@ std::vector<std::string> city_files_of_report(const std::string& report_json_pat
     const std::string tile_report = resolve_beside(string_or(member(t, "report")), report_json_path);
     try {
       run_report_city_files(read_json_file(tile_report), tile_report, out);
-    } catch (const std::exception&) {
-    }
+    } catch (const std::exception&) {}
   }
   return out;
 }
 
-HtmlReportResult write_html_report(const std::string& report_json_path, const std::vector<std::string>& city_paths,
+HtmlReportResult write_html_report(const std::string& report_json_path,
+                                   const std::vector<std::string>& city_paths,
                                    const std::string& out_html_path, const HtmlReportOptions& opt) {
   Page page;
   const bool have_report = !report_json_path.empty();
@@ -672,7 +693,8 @@ HtmlReportResult write_html_report(const std::string& report_json_path, const st
   HtmlReportResult res;
   res.city_files = city_paths.empty() && have_report ? city_files_of_report(report_json_path) : city_paths;
   if (have_report) rank_3d(page, opt.max_3d_buildings);
-  for (size_t i = 0; i < res.city_files.size(); ++i) read_city_file(res.city_files[i], i, page, opt, have_report);
+  for (size_t i = 0; i < res.city_files.size(); ++i)
+    read_city_file(res.city_files[i], i, page, opt, have_report);
   if (!have_report && page.buildings.empty())
     throw mc::io::ReadError("no buildings found in the city files given and no report");
   if (!have_report && !page.buildings.empty()) {
@@ -686,7 +708,8 @@ HtmlReportResult write_html_report(const std::string& report_json_path, const st
   size_t no_geometry = 0;
   for (const Building& b : page.buildings) no_geometry += !b.ghost_done;
   if (no_geometry)
-    page.warnings.push_back(std::to_string(no_geometry) + " buildings have no surface geometry in the city files read");
+    page.warnings.push_back(std::to_string(no_geometry) +
+                            " buildings have no surface geometry in the city files read");
   page.meta["city_files"] = res.city_files;
 
   // Title: the input's (or the report's) name.
@@ -713,18 +736,15 @@ HtmlReportResult write_html_report(const std::string& report_json_path, const st
 
   const std::string tmpl = html_assets::kPageHtml;
   const std::string title = html_escape("morphcut-city: " + name);
-  const std::map<std::string, std::string_view> parts = {
-      {"@TITLE@", title},
-      {"@CSS@", html_assets::kPageCss},
-      {"@DATA@", safe},
-      {"@THREE@", html_assets::kThreeJs},
-      {"@JS@", html_assets::kPageJs}};
+  const std::map<std::string, std::string_view> parts = {{"@TITLE@", title},
+                                                         {"@CSS@", html_assets::kPageCss},
+                                                         {"@DATA@", safe},
+                                                         {"@THREE@", html_assets::kThreeJs},
+                                                         {"@JS@", html_assets::kPageJs}};
   std::unique_ptr<mc::io::AtomicFile> file;
   try {
     file = std::make_unique<mc::io::AtomicFile>(out_html_path);
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(out_html_path + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(out_html_path + ": " + e.what()); }
   std::ostream& o = file->stream();
   size_t at = 0;
   while (at < tmpl.size()) {
@@ -749,9 +769,7 @@ HtmlReportResult write_html_report(const std::string& report_json_path, const st
   }
   try {
     file->commit();
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(out_html_path + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(out_html_path + ": " + e.what()); }
   res.path = out_html_path;
   std::error_code ec;
   res.bytes = fs::file_size(out_html_path, ec);

@@ -33,9 +33,9 @@ struct HtmlReportOptions {
 struct HtmlReportResult {
   std::string path;
   uint64_t bytes = 0;
-  size_t buildings = 0;   // rows on the page
-  size_t with_3d = 0;     // buildings whose geometry is embedded
-  size_t footprints = 0;  // buildings drawn as footprints in the plan view
+  size_t buildings = 0;                 // rows on the page
+  size_t with_3d = 0;                   // buildings whose geometry is embedded
+  size_t footprints = 0;                // buildings drawn as footprints in the plan view
   std::vector<std::string> city_files;  // the files read
   std::vector<std::string> warnings;    // city files missing or unreadable, buildings without geometry, ...
 };
@@ -46,7 +46,8 @@ struct HtmlReportResult {
 // (city_files_of_report). Writes `out_html_path` atomically.
 // Throws mc::io::ReadError when the report cannot be read or no data is found at all,
 // mc::io::WriteError when the page cannot be written.
-HtmlReportResult write_html_report(const std::string& report_json_path, const std::vector<std::string>& city_paths,
+HtmlReportResult write_html_report(const std::string& report_json_path,
+                                   const std::vector<std::string>& city_paths,
                                    const std::string& out_html_path, const HtmlReportOptions& opt = {});
 
 // The city outputs a report names: outputs.cityjson and outputs.levels[].cityjson; for a merged

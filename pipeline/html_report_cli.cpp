@@ -15,7 +15,8 @@ namespace mc::pipeline {
 
 namespace {
 
-const char* kFooter = R"(REPORT is a morphcut-city run report (<stem>.morphcut.report.json) or a merge-reports result
+const char* kFooter =
+    R"(REPORT is a morphcut-city run report (<stem>.morphcut.report.json) or a merge-reports result
 (the tiles' city outputs are found through each tile's report). CITY files default to the outputs
 the report names (outputs.cityjson and, when written per level, outputs.levels[].cityjson);
 give them when the outputs were moved, or pass `-` as REPORT to make a page from city files alone.
@@ -36,14 +37,16 @@ int html_main(int argc, char** argv) {
   HtmlReportOptions opt;
   double max_3d_mb = static_cast<double>(opt.max_3d_bytes) / 1e6;
   bool quiet = false;
-  app.add_option("REPORT", report, "run report or merged report JSON; - = none (CITY files only)")->required();
+  app.add_option("REPORT", report, "run report or merged report JSON; - = none (CITY files only)")
+      ->required();
   app.add_option("CITY", cities, "CityJSON / CityJSONSeq outputs (default: those the report names)");
   app.add_option("-o,--output", out, "page to write (default: REPORT with .report.json -> .html)");
   app.add_option("--max-3d", opt.max_3d_buildings, "buildings whose 3D geometry is embedded at most")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--max-3d-mb", max_3d_mb, "megabytes of 3D geometry (JSON) embedded at most")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-footprints", opt.max_footprints, "buildings drawn as footprints in the plan at most (others: dots)")
+  app.add_option("--max-footprints", opt.max_footprints,
+                 "buildings drawn as footprints in the plan at most (others: dots)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--quiet,-q", quiet, "print nothing but errors");
   app.footer(kFooter);
@@ -61,8 +64,10 @@ int html_main(int argc, char** argv) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!quiet) {
       for (const auto& w : r.warnings) std::fprintf(stderr, "morphcut-city html: warning: %s\n", w.c_str());
-      std::fprintf(stderr, "morphcut-city html: %zu buildings (3D for %zu) from %zu city files, %.2f MB in %.2f s -> %s\n",
-                   r.buildings, r.with_3d, r.city_files.size(), static_cast<double>(r.bytes) / 1e6, s, r.path.c_str());
+      std::fprintf(
+          stderr,
+          "morphcut-city html: %zu buildings (3D for %zu) from %zu city files, %.2f MB in %.2f s -> %s\n",
+          r.buildings, r.with_3d, r.city_files.size(), static_cast<double>(r.bytes) / 1e6, s, r.path.c_str());
     }
     return 0;
   } catch (const std::exception& e) {

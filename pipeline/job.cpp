@@ -109,7 +109,8 @@ void set_status_attributes(BuildingOutcome& out) {
   }
   if (std::isfinite(out.hausdorff)) a["morphcut_hausdorff"] = rounded(out.hausdorff, 1e-6);
   // What every level's parts must add up to (checked by `morphcut-city validate`).
-  if (!out.levels.empty() && out.measures.volume) a["morphcut_cell_volume"] = rounded(*out.measures.volume, 1e-6);
+  if (!out.levels.empty() && out.measures.volume)
+    a["morphcut_cell_volume"] = rounded(*out.measures.volume, 1e-6);
   // A cell whose volume disagrees with the independent estimate beyond preprocess.volume_check,
   // after a second labelling: the status stays, the disagreement is on the Building
   // (docs/algorithm.md §6.5, docs/output-format.md).
@@ -126,15 +127,16 @@ void set_status_attributes(BuildingOutcome& out) {
 struct EncodedLevel {
   std::vector<StagedPart> staged;
   std::vector<PolygonMesh> meshes;
-  LevelOutcome lv;      // the geometric fields; the search fields are the caller's
+  LevelOutcome lv;  // the geometric fields; the search fields are the caller's
   size_t dropped_faces = 0, repaired_parts = 0, split_faces = 0;
   std::string grid_repair;  // LevelOutcome::grid_repair
   double check_seconds = 0;
-  std::string defect;     // non-empty: a part fails the checks, and nothing of the level is kept
+  std::string defect;  // non-empty: a part fails the checks, and nothing of the level is kept
 };
 
-EncodedLevel encode_level(const std::string& building, size_t i, double threshold, const std::vector<PartResult>& parts,
-                          const Preprocessed& pre, const std::string& lod, const std::string& version, VertexPool& pool,
+EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
+                          const std::vector<PartResult>& parts, const Preprocessed& pre,
+                          const std::string& lod, const std::string& version, VertexPool& pool,
                           bool conforming) {
   EncodedLevel e;
   e.lv.index = i;
@@ -203,8 +205,8 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
 //      Valid parts, but a neighbour's corner may then stand a fraction of a grid step inside it.
 // On failure the pool is back at its mark and the first defect is reported.
 EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
-                                  const std::vector<PartResult>& parts, const Preprocessed& pre, const std::string& lod,
-                                  const std::string& version, VertexPool& pool) {
+                                  const std::vector<PartResult>& parts, const Preprocessed& pre,
+                                  const std::string& lod, const std::string& version, VertexPool& pool) {
   const size_t mark = pool.mark();
   EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
   if (e.defect.empty()) return e;
@@ -243,9 +245,10 @@ std::string deadline_reason(const Params& p, const char* where) {
 void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, const mc::io::Header& h,
                         const Params& p, const RunConfig& rc) {
   const auto start = Clock::now();
-  const auto deadline = p.timeout_s > 0
-                            ? start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(p.timeout_s))
-                            : Clock::time_point::max();
+  const auto deadline =
+      p.timeout_s > 0
+          ? start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(p.timeout_s))
+          : Clock::time_point::max();
   auto t = Clock::now();
   Preprocessed pre;
   try {
@@ -381,7 +384,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   for (const auto& c : pre.components) volume += c.volume;
   out.measures.volume = volume;
   std::vector<Vec3> all_points;
-  for (const auto& m : first_level_meshes) all_points.insert(all_points.end(), m.vertices.begin(), m.vertices.end());
+  for (const auto& m : first_level_meshes)
+    all_points.insert(all_points.end(), m.vertices.begin(), m.vertices.end());
   const double hull = convex_hull(all_points).volume;
   if (hull > 0) out.measures.convexity = std::min(1.0, volume / hull);
   const VolumeCentroid vc = volume_centroid(first_level_meshes);
@@ -403,7 +407,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   }
   out.feature.vertices.insert(out.feature.vertices.end(), new_vertices.begin(), new_vertices.end());
   json& building = out.feature.objects[out.id];
-  if (!building.contains("children") || !building["children"].is_array()) building["children"] = json::array();
+  if (!building.contains("children") || !building["children"].is_array())
+    building["children"] = json::array();
   for (auto& s : staged) {
     building["children"].push_back(s.id);
     out.feature.objects[s.id] = std::move(s.object);
@@ -416,7 +421,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     out.status = "partial";
     if (!dec.reason.empty()) notes.insert(notes.begin(), dec.reason);
     else if (pre.truncated) notes.insert(notes.begin(), deadline_reason(p, "during preprocessing"));
-    else if (dec.partial || notes.empty()) notes.insert(notes.begin(), deadline_reason(p, "before the last level"));
+    else if (dec.partial || notes.empty())
+      notes.insert(notes.begin(), deadline_reason(p, "before the last level"));
     for (const auto& n : notes) out.reason += (out.reason.empty() ? "" : "; ") + n;
   } else {
     out.status = "ok";
@@ -444,8 +450,9 @@ size_t strip_previous_parts(mc::io::Feature& f) {
     *ch = std::move(kept);
   }
   if (auto a = b->find("attributes"); a != b->end() && a->is_object())
-    for (const char* k : {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff",
-                          "morphcut_cell_volume", "morphcut_level", "morphcut_volume_check"})
+    for (const char* k :
+         {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff",
+          "morphcut_cell_volume", "morphcut_level", "morphcut_volume_check"})
       a->erase(k);
   if (auto a = b->find("attributes"); a != b->end() && a->is_object())
     for (const auto& k : building_attribute_names()) a->erase(k);
@@ -469,7 +476,8 @@ BuildingOutcome run_building(const mc::io::Feature& f, const mc::io::Header& h, 
   return run_building(mc::io::Feature(f), h, p, rc);
 }
 
-BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const Params& p, const RunConfig& rc) {
+BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const Params& p,
+                             const RunConfig& rc) {
   const auto start = Clock::now();
   BuildingOutcome out;
   out.id = f.id;
@@ -490,8 +498,8 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
       out.status = "skipped";
       out.reason = rc.lod == "highest"
                        ? "no surface geometry"
-                       : "no surface geometry at LoD " + rc.lod + " (available: " +
-                             lods_text(mc::io::building_lods(out.feature, h)) + ")";
+                       : "no surface geometry at LoD " + rc.lod +
+                             " (available: " + lods_text(mc::io::building_lods(out.feature, h)) + ")";
       if (!in.problems.empty()) out.reason += "; " + in.problems.front();
     } else if (p.max_faces > 0 && in.mesh.faces.size() > static_cast<size_t>(p.max_faces)) {
       out.status = "skipped";

@@ -19,7 +19,8 @@ inline constexpr const char* kStatuses[] = {"ok", "partial", "failed", "skipped"
 BuildingOutcome run_building(const mc::io::Feature& f, const mc::io::Header& h, const Params& p,
                              const RunConfig& rc);
 // Same, taking the feature by value (the pipeline moves it through, no copy).
-BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const Params& p, const RunConfig& rc);
+BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const Params& p,
+                             const RunConfig& rc);
 
 // The input kept untouched with status "failed" and `reason`: for a job that threw outside
 // run_building's own guard (the run's per-feature hook), so that the building is still written.

@@ -13,7 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-
 double part_level(const json& object) { return object["attributes"]["morphcut_level"].get<double>(); }
 
 // The feature with only the parts `keep` accepts (the others and their ids in "children" left
@@ -39,7 +38,8 @@ mc::io::Feature with_parts(const mc::io::Feature& f, Keep keep) {
     if (ch == obj.end() || !ch->is_array()) continue;
     json kept = json::array();
     for (auto& c : *ch)
-      if (!c.is_string() || !std::binary_search(gone.begin(), gone.end(), c.get<std::string>())) kept.push_back(std::move(c));
+      if (!c.is_string() || !std::binary_search(gone.begin(), gone.end(), c.get<std::string>()))
+        kept.push_back(std::move(c));
     *ch = std::move(kept);
   }
   return v;
@@ -64,7 +64,8 @@ std::string level_output_path(const std::string& output, double threshold) {
 bool is_morphcut_part(const json& object) {
   if (!object.is_object() || object.value("type", "") != "BuildingPart") return false;
   const auto a = object.find("attributes");
-  return a != object.end() && a->is_object() && a->contains("morphcut_level") && (*a)["morphcut_level"].is_number();
+  return a != object.end() && a->is_object() && a->contains("morphcut_level") &&
+         (*a)["morphcut_level"].is_number();
 }
 
 void compact_vertices(mc::io::Feature& f) {
@@ -93,7 +94,8 @@ mc::io::Feature annotated_view(const mc::io::Feature& f) {
   return v;
 }
 
-mc::io::Feature level_view(const mc::io::Feature& f, const mc::io::Header& h, double threshold, const std::string& lod) {
+mc::io::Feature level_view(const mc::io::Feature& f, const mc::io::Header& h, double threshold,
+                           const std::string& lod) {
   bool has_parts = false;
   mc::io::Feature v = with_parts(f, [&](const json& part) {
     const bool here = part_level(part) == threshold;

@@ -21,7 +21,8 @@ mc::io::Feature annotated_view(const mc::io::Feature& f);
 
 // The feature as level `threshold` shows it; `lod` is the input LoD the parts replace
 // (BuildingOutcome::lod). The Building gets `morphcut_level` = threshold when it has parts there.
-mc::io::Feature level_view(const mc::io::Feature& f, const mc::io::Header& h, double threshold, const std::string& lod);
+mc::io::Feature level_view(const mc::io::Feature& f, const mc::io::Header& h, double threshold,
+                           const std::string& lod);
 
 // True for a BuildingPart a morphcut run added (it carries `morphcut_level`).
 bool is_morphcut_part(const nlohmann::json& object);

@@ -15,10 +15,10 @@
 
 namespace mc::pipeline {
 
-using nlohmann::json;
 using mc::io::MultiPolygon2;
 using mc::io::Polygon2;
 using mc::io::Ring2;
+using nlohmann::json;
 using Pt = std::array<double, 2>;
 
 namespace {
@@ -31,7 +31,9 @@ double rounded(double v, double step) { return std::isfinite(v) ? std::round(v /
 // exactly equal, and the result does not depend on the last bits of a projection.
 double snap(double v) { return std::round(v * 1e6) / 1e6; }
 
-double cross2(const Pt& o, const Pt& a, const Pt& b) { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); }
+double cross2(const Pt& o, const Pt& a, const Pt& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
 
 double ring_signed_area(const Ring2& r) {
   double s = 0;
@@ -54,7 +56,6 @@ double multipolygon_area(const MultiPolygon2& m) {
   for (const auto& p : m) a += polygon_area(p);
   return a;
 }
-
 
 // Smallest distance between two parallel lines enclosing a convex polygon (over its edges).
 double caliper_width(const Ring2& hull) {
@@ -144,7 +145,8 @@ MultiPolygon2 union_of(const std::vector<Polygon2>& polys, bool& ok) {
 // Vector area (half the sum of cross products) of a 3D ring.
 Vec3 vector_area(const PolygonMesh& m, const std::vector<uint32_t>& ring) {
   Vec3 s{};
-  for (size_t i = 0, n = ring.size(); i < n; ++i) s += cross(m.vertices[ring[i]], m.vertices[ring[(i + 1) % n]]);
+  for (size_t i = 0, n = ring.size(); i < n; ++i)
+    s += cross(m.vertices[ring[i]], m.vertices[ring[(i + 1) % n]]);
   return s * 0.5;
 }
 
@@ -197,7 +199,8 @@ void assign_roles(LevelMassing& L, const MassingParams& p) {
   const size_t n = P.size();
   std::vector<size_t> by_volume(n);
   std::iota(by_volume.begin(), by_volume.end(), size_t{0});
-  std::stable_sort(by_volume.begin(), by_volume.end(), [&](size_t a, size_t b) { return P[a].volume > P[b].volume; });
+  std::stable_sort(by_volume.begin(), by_volume.end(),
+                   [&](size_t a, size_t b) { return P[a].volume > P[b].volume; });
   auto height = [&](size_t i) { return P[i].z_max - P[i].z_min; };
 
   // 1. podium and tower: a raised part t stacked on the largest grounded part q, covering a small
@@ -240,7 +243,8 @@ void assign_roles(LevelMassing& L, const MassingParams& p) {
       }
   // 3./4. the other grounded parts: wing when substantial, else annex.
   for (size_t i = 0; i < n; ++i)
-    if (P[i].grounded && P[i].role.empty()) P[i].role = P[i].volume >= p.wing_min_share * reference ? "wing" : "annex";
+    if (P[i].grounded && P[i].role.empty())
+      P[i].role = P[i].volume >= p.wing_min_share * reference ? "wing" : "annex";
   // 5. roof: a raised part that is a pitched-roof wedge, sawtooth or slab cut off the storeys it
   //    rests on: it fills at most roof_max_fill of its footprint x height and its largest contact
   //    below is stacked and covers at least 0.8 of its footprint. Not a stepped-back storey (a
@@ -316,8 +320,8 @@ const char* position(int above) { return above > 0 ? "above" : above < 0 ? "belo
 
 }  // namespace
 
-LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::vector<PartResult>& parts, size_t index,
-                           double threshold, const MassingParams& p) {
+LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::vector<PartResult>& parts,
+                           size_t index, double threshold, const MassingParams& p) {
   LevelMassing L;
   L.index = index;
   L.threshold = threshold;
@@ -345,9 +349,11 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
       if (!poly.empty()) outer.insert(outer.end(), poly[0].begin(), poly[0].end());
     pm.width = caliper_width(mc::convex_hull_2d(outer));
     // Contacts: shared faces by neighbour and kind.
-    std::map<uint32_t, std::map<std::string, std::pair<double, double>>> acc;  // other -> kind -> (area, signed up-area)
+    std::map<uint32_t, std::map<std::string, std::pair<double, double>>>
+        acc;  // other -> kind -> (area, signed up-area)
     for (const Polygon& f : m.faces) {
-      if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j) continue;
+      if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j)
+        continue;
       const auto [area, nrm] = face_area(m, f);
       if (!(area > 0)) continue;
       auto& slot = acc[static_cast<uint32_t>(f.neighbour)][kind_name(nrm.z, stacked_cos, side_sin)];
@@ -393,12 +399,14 @@ void finish_massing(BuildingMassing& m, const MassingParams& p) {
   // Tiers: the longest chain of stacked contacts, + 1 (parts in order of z_min: an edge goes up).
   std::vector<size_t> order(n);
   std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return L.parts[a].z_min < L.parts[b].z_min; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return L.parts[a].z_min < L.parts[b].z_min; });
   std::vector<int> chain(n, 1);
   for (size_t i : order)
     for (const Contact& c : L.parts[i].contacts)
       if (c.kind == "stacked" && c.above == 1 && L.parts[c.other].z_min < L.parts[i].z_min)
-        chain[i] = std::max(chain[i], chain[c.other] + (L.parts[i].role == "roof" ? 0 : 1));  // a roof is no tier
+        chain[i] =
+            std::max(chain[i], chain[c.other] + (L.parts[i].role == "roof" ? 0 : 1));  // a roof is no tier
   for (int c : chain) f.tiers = std::max(f.tiers, c);
   // Graph: undirected edges, components, independent cycles.
   mc::UnionFind graph(n);
@@ -418,7 +426,8 @@ void finish_massing(BuildingMassing& m, const MassingParams& p) {
   bool ok = false;
   m.footprint = union_of(polys, ok);
   for (const auto& poly : m.footprint)
-    for (size_t r = 1; r < poly.size(); ++r) f.courtyards += std::abs(ring_signed_area(poly[r])) >= p.courtyard_min_area;
+    for (size_t r = 1; r < poly.size(); ++r)
+      f.courtyards += std::abs(ring_signed_area(poly[r])) >= p.courtyard_min_area;
 }
 
 void add_part_attributes(json& a, const LevelMassing& L, size_t j, const std::string& building) {
@@ -440,8 +449,8 @@ void add_part_attributes(json& a, const LevelMassing& L, size_t j, const std::st
 
 const std::vector<std::string>& building_attribute_names() {
   static const std::vector<std::string> names = {
-      "morphcut_massing_level", "morphcut_tiers",         "morphcut_setbacks",       "morphcut_wings",
-      "morphcut_annexes",       "morphcut_rooftop_units", "morphcut_courtyards",     "morphcut_tower_on_podium",
+      "morphcut_massing_level", "morphcut_tiers",         "morphcut_setbacks",   "morphcut_wings",
+      "morphcut_annexes",       "morphcut_rooftop_units", "morphcut_courtyards", "morphcut_tower_on_podium",
       "morphcut_graph_edges",   "morphcut_graph_cycles"};
   return names;
 }
@@ -484,8 +493,8 @@ json massing_to_json(const BuildingMassing& m) {
   const MassingFeatures& f = m.features;
   return {{"levels", levels},
           {"features",
-           {f.valid, f.level, f.tiers, f.setbacks, f.wings, f.annexes, f.rooftop_units, f.courtyards, f.tower_on_podium,
-            f.edges, f.cycles}},
+           {f.valid, f.level, f.tiers, f.setbacks, f.wings, f.annexes, f.rooftop_units, f.courtyards,
+            f.tower_on_podium, f.edges, f.cycles}},
           {"footprint", rings_json(m.footprint)}};
 }
 
@@ -507,7 +516,8 @@ void massing_from_json(const json& j, BuildingMassing& m) {
       pm.grounded = pj.at("g").get<bool>();
       pm.role = pj.at("r").get<std::string>();
       for (const auto& cj : pj.at("c"))
-        pm.contacts.push_back({cj[0].get<uint32_t>(), cj[1].get<double>(), cj[2].get<std::string>(), cj[3].get<int>()});
+        pm.contacts.push_back(
+            {cj[0].get<uint32_t>(), cj[1].get<double>(), cj[2].get<std::string>(), cj[3].get<int>()});
       pm.footprint = rings_from_json(pj.at("f"));
       L.parts.push_back(std::move(pm));
     }

@@ -21,10 +21,10 @@ namespace mc::pipeline {
 
 // One neighbour of a part: the faces they share, by their orientation.
 struct Contact {
-  uint32_t other = 0;     // part index in the level
-  double area = 0;        // total shared face area
-  std::string kind;       // "stacked", "side" or "inclined" (the kind with the largest area)
-  int above = 0;          // stacked/inclined: +1 this part lies above the other, -1 below; side: 0
+  uint32_t other = 0;  // part index in the level
+  double area = 0;     // total shared face area
+  std::string kind;    // "stacked", "side" or "inclined" (the kind with the largest area)
+  int above = 0;       // stacked/inclined: +1 this part lies above the other, -1 below; side: 0
 };
 
 struct PartMassing {
@@ -33,20 +33,20 @@ struct PartMassing {
   double width = 0;           // smallest caliper width of the footprint's convex hull
   double volume = 0, hull_volume = 0, convexity = 0;
   bool grounded = false;
-  std::string role;           // main, wing, annex, podium, tower, roof, setback, rooftop
+  std::string role;               // main, wing, annex, podium, tower, roof, setback, rooftop
   std::vector<Contact> contacts;  // by neighbour index
   mc::io::MultiPolygon2 footprint;
 };
 
 struct LevelMassing {
-  size_t index = 0;      // into Params::dec.levels
+  size_t index = 0;  // into Params::dec.levels
   double threshold = 0;
   std::vector<PartMassing> parts;
 };
 
 struct MassingFeatures {
   bool valid = false;
-  double level = 0;      // the level they describe
+  double level = 0;  // the level they describe
   int tiers = 0, setbacks = 0, wings = 0, annexes = 0, rooftop_units = 0, courtyards = 0;
   bool tower_on_podium = false;
   int edges = 0, cycles = 0;  // contact graph: edges, independent cycles (E - V + components)
@@ -55,18 +55,19 @@ struct MassingFeatures {
 struct BuildingMassing {
   std::vector<LevelMassing> levels;  // the written levels
   MassingFeatures features;
-  mc::io::MultiPolygon2 footprint;   // union of the analysis level's part footprints
+  mc::io::MultiPolygon2 footprint;  // union of the analysis level's part footprints
 };
 
 // One level: `meshes[j]` is part j (Polygon::neighbour set, level_part_meshes), `parts[j]` its result.
-LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::vector<PartResult>& parts, size_t index,
-                           double threshold, const MassingParams& p);
+LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::vector<PartResult>& parts,
+                           size_t index, double threshold, const MassingParams& p);
 
 // The building features and footprint from the written level nearest (in log) to p.level.
 void finish_massing(BuildingMassing& m, const MassingParams& p);
 
 // The morphcut_* part attributes of part j (ids of neighbours: <building>-mc<index>-<k>).
-void add_part_attributes(nlohmann::json& attributes, const LevelMassing& level, size_t j, const std::string& building);
+void add_part_attributes(nlohmann::json& attributes, const LevelMassing& level, size_t j,
+                         const std::string& building);
 // The morphcut_* building attributes (nothing when the features are not valid).
 void add_building_attributes(nlohmann::json& attributes, const BuildingMassing& m);
 // The building attribute names above (to strip from a re-run's input).

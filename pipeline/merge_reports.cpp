@@ -24,7 +24,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 std::string strip_suffix(const std::string& name, std::initializer_list<std::string_view> suffixes) {
   for (std::string_view ext : suffixes)
     if (name.ends_with(ext) && name.size() > ext.size()) return name.substr(0, name.size() - ext.size());
@@ -99,7 +98,9 @@ const ojson& member(const ojson& j, const char* key) {
   return it == j.end() ? null_value : *it;
 }
 
-size_t count_of(const ojson& j) { return j.is_number_unsigned() || j.is_number_integer() ? j.get<size_t>() : 0; }
+size_t count_of(const ojson& j) {
+  return j.is_number_unsigned() || j.is_number_integer() ? j.get<size_t>() : 0;
+}
 
 void copy_spool(mc::io::ScratchFile& spool, std::ostream& o) {
   std::vector<char> buf(1 << 20);
@@ -113,7 +114,8 @@ void copy_spool(mc::io::ScratchFile& spool, std::ostream& o) {
 }  // namespace
 
 std::string tile_name_of_report(const std::string& report_path) {
-  return strip_suffix(fs::path(report_path).filename().string(), {".morphcut.report.json", ".report.json", ".json"});
+  return strip_suffix(fs::path(report_path).filename().string(),
+                      {".morphcut.report.json", ".report.json", ".json"});
 }
 
 std::string csv_beside_report(const std::string& report_path) {
@@ -123,7 +125,8 @@ std::string csv_beside_report(const std::string& report_path) {
 
 std::string input_stem(const std::string& input_path) {
   if (input_path == "-") return "stdin";
-  return strip_suffix(fs::path(input_path).filename().string(), {".city.jsonl", ".city.json", ".jsonl", ".json"});
+  return strip_suffix(fs::path(input_path).filename().string(),
+                      {".city.jsonl", ".city.json", ".jsonl", ".json"});
 }
 
 MergeResult merge_reports(const MergeOptions& opt) {
@@ -178,9 +181,7 @@ MergeResult merge_reports(const MergeOptions& opt) {
       try {
         doc = ojson::parse(text);
         if (!doc.is_object() || !member(doc, "buildings").is_array()) why = "not a morphcut-city run report";
-      } catch (const std::exception& e) {
-        why = std::string("report is not valid JSON (") + e.what() + ")";
-      }
+      } catch (const std::exception& e) { why = std::string("report is not valid JSON (") + e.what() + ")"; }
     }
     if (!why.empty()) {
       missing.push_back({{"tile", t.name}, {"report", t.report}, {"reason", why}});
@@ -189,7 +190,8 @@ MergeResult merge_reports(const MergeOptions& opt) {
     }
     ++res.merged;
 
-    const std::string version = member(doc, "version").is_string() ? member(doc, "version").get<std::string>() : "";
+    const std::string version =
+        member(doc, "version").is_string() ? member(doc, "version").get<std::string>() : "";
     const ojson config = result_config(member(doc, "config"));
     std::vector<std::string> mismatch;
     if (ref_tile.empty()) {
@@ -197,8 +199,8 @@ MergeResult merge_reports(const MergeOptions& opt) {
     } else {
       if (version != ref_version) {
         mismatch.push_back("version");
-        res.warnings.push_back("tile " + t.name + ": tool version " + version + " differs from " + ref_version +
-                               " (tile " + ref_tile + ")");
+        res.warnings.push_back("tile " + t.name + ": tool version " + version + " differs from " +
+                               ref_version + " (tile " + ref_tile + ")");
       }
       if (config != ref_config) {
         mismatch.push_back("config");
@@ -240,16 +242,18 @@ MergeResult merge_reports(const MergeOptions& opt) {
       entries.append(std::string(entry_count++ ? ",\n    " : "\n    ") + e.dump());
     }
     res.buildings += buildings.size();
-    if (member(doc, "building_count").is_number() && count_of(member(doc, "building_count")) != buildings.size())
-      res.warnings.push_back("tile " + t.name + ": building_count " + member(doc, "building_count").dump() + " but " +
-                             std::to_string(buildings.size()) + " entries");
+    if (member(doc, "building_count").is_number() &&
+        count_of(member(doc, "building_count")) != buildings.size())
+      res.warnings.push_back("tile " + t.name + ": building_count " + member(doc, "building_count").dump() +
+                             " but " + std::to_string(buildings.size()) + " entries");
 
     // CSV rows, with the tile first; rows of a tile with other columns are mapped by name.
     if (csv_file) {
       std::string csv_text;
       if (t.csv.empty() || !read_text(t.csv, csv_text) || tile_columns[i].empty()) {
         res.csv_incomplete = true;
-        res.warnings.push_back("tile " + t.name + ": summary CSV " + (t.csv.empty() ? "not given" : t.csv + " missing"));
+        res.warnings.push_back("tile " + t.name + ": summary CSV " +
+                               (t.csv.empty() ? "not given" : t.csv + " missing"));
         s["csv"] = nullptr;
       } else {
         const auto records = csv_records(csv_text);
@@ -294,22 +298,23 @@ MergeResult merge_reports(const MergeOptions& opt) {
 
   ojson counts = ojson::object();
   for (const auto& [status, n] : res.counts) counts[status] = n;
-  ojson head = {{"tool", "morphcut-city merge-reports"},
-                {"version", MC_VERSION},
-                {"tiles", std::move(tiles)},
-                {"missing_tiles", std::move(missing)},
-                {"totals",
-                 {{"tiles", res.tiles},
-                  {"merged", res.merged},
-                  {"missing", res.tiles - res.merged},
-                  {"building_count", res.buildings},
-                  {"counts", counts},
-                  {"duplicate_ids", res.duplicate_ids},
-                  {"wall_seconds", wall},
-                  {"cache", any_cache ? ojson{{"hits", cache_hits}, {"misses", cache_misses}} : ojson(nullptr)},
-                  {"csv_rows", csv_file ? ojson(res.csv_rows) : ojson(nullptr)}}},
-                {"duplicates", std::move(duplicates)},
-                {"warnings", res.warnings}};
+  ojson head = {
+      {"tool", "morphcut-city merge-reports"},
+      {"version", MC_VERSION},
+      {"tiles", std::move(tiles)},
+      {"missing_tiles", std::move(missing)},
+      {"totals",
+       {{"tiles", res.tiles},
+        {"merged", res.merged},
+        {"missing", res.tiles - res.merged},
+        {"building_count", res.buildings},
+        {"counts", counts},
+        {"duplicate_ids", res.duplicate_ids},
+        {"wall_seconds", wall},
+        {"cache", any_cache ? ojson{{"hits", cache_hits}, {"misses", cache_misses}} : ojson(nullptr)},
+        {"csv_rows", csv_file ? ojson(res.csv_rows) : ojson(nullptr)}}},
+      {"duplicates", std::move(duplicates)},
+      {"warnings", res.warnings}};
 
   std::ostream& o = report_file->stream();
   std::string text = head.dump(2);
@@ -329,9 +334,7 @@ MergeResult merge_reports(const MergeOptions& opt) {
   try {
     report_file->commit();
     if (csv_file) csv_file->commit();
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(std::string("merged outputs: ") + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(std::string("merged outputs: ") + e.what()); }
   return res;
 }
 

@@ -40,7 +40,7 @@ struct MergeOptions {
 
 struct MergeResult {
   size_t tiles = 0, merged = 0;
-  std::vector<std::string> missing;   // "tile: why"
+  std::vector<std::string> missing;  // "tile: why"
   std::vector<std::string> warnings;
   size_t buildings = 0, csv_rows = 0;
   std::map<std::string, size_t> counts;  // by status

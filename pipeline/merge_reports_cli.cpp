@@ -15,7 +15,8 @@ namespace mc::pipeline {
 
 namespace {
 
-const char* kFooter = R"(Tiles are given either as report paths (the CSV beside each report, x.morphcut.report.json ->
+const char* kFooter =
+    R"(Tiles are given either as report paths (the CSV beside each report, x.morphcut.report.json ->
 x.morphcut.csv, is merged too), or as the tile list given to the array (one input path per line;
 blank lines and #-comments ignored) with the directory the tiles were written to: the report of
 tile `a/b/5910.city.json` is then DIR/5910.morphcut.report.json.
@@ -45,7 +46,8 @@ std::vector<std::string> read_tile_list(const std::string& path) {
 }  // namespace
 
 int merge_reports_main(int argc, char** argv) {
-  CLI::App app{"morphcut-city merge-reports - merge per-tile run reports and CSVs into one", "morphcut-city merge-reports"};
+  CLI::App app{"morphcut-city merge-reports - merge per-tile run reports and CSVs into one",
+               "morphcut-city merge-reports"};
   std::vector<std::string> reports;
   std::string tile_list, dir, out, csv_out;
   bool no_csv = false;
@@ -58,7 +60,8 @@ int merge_reports_main(int argc, char** argv) {
   app.footer(kFooter);
   if (const auto code = parse_or_exit(app, argc, argv)) return *code;
   try {
-    if (!tile_list.empty() == !reports.empty()) throw CLI::ValidationError("give either REPORTS or --tiles LIST --dir DIR");
+    if (!tile_list.empty() == !reports.empty())
+      throw CLI::ValidationError("give either REPORTS or --tiles LIST --dir DIR");
     if (!tile_list.empty() && dir.empty()) throw CLI::ValidationError("--tiles needs --dir");
     MergeOptions opt;
     opt.report_out = out;
@@ -80,19 +83,19 @@ int merge_reports_main(int argc, char** argv) {
     const MergeResult r = merge_reports(opt);
     for (const auto& w : r.warnings) std::fprintf(stderr, "merge-reports: warning: %s\n", w.c_str());
     for (const auto& m : r.missing) std::fprintf(stderr, "merge-reports: missing tile %s\n", m.c_str());
-    std::fprintf(stderr, "merge-reports: %zu of %zu tiles, %zu buildings (%zu ok, %zu partial, %zu failed, %zu skipped), "
-                 "%zu duplicate ids -> %s%s%s\n",
-                 r.merged, r.tiles, r.buildings, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"),
-                 r.counts.at("skipped"), r.duplicate_ids, out.c_str(), opt.csv_out.empty() ? "" : ", ",
-                 opt.csv_out.c_str());
+    std::fprintf(
+        stderr,
+        "merge-reports: %zu of %zu tiles, %zu buildings (%zu ok, %zu partial, %zu failed, %zu skipped), "
+        "%zu duplicate ids -> %s%s%s\n",
+        r.merged, r.tiles, r.buildings, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"),
+        r.counts.at("skipped"), r.duplicate_ids, out.c_str(), opt.csv_out.empty() ? "" : ", ",
+        opt.csv_out.c_str());
     return r.exit_code();
   } catch (const CLI::Error& e) {
     std::fprintf(stderr, "merge-reports: %s\n", e.what());
   } catch (const mc::io::WriteError& e) {
     std::fprintf(stderr, "merge-reports: cannot write: %s\n", e.what());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "merge-reports: error: %s\n", e.what());
-  }
+  } catch (const std::exception& e) { std::fprintf(stderr, "merge-reports: error: %s\n", e.what()); }
   return kExitUsage;
 }
 

@@ -16,10 +16,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // One written LoD level of one building.
 struct LevelOutcome {
-  size_t index = 0;          // into Params::dec.levels (the `mc<index>` of the part ids)
-  double threshold = 0;      // the LoD threshold l
+  size_t index = 0;      // into Params::dec.levels (the `mc<index>` of the part ids)
+  double threshold = 0;  // the LoD threshold l
   size_t parts = 0;
-  double convexity = kNaN;   // volume-weighted mean of V/V_CH
+  double convexity = kNaN;  // volume-weighted mean of V/V_CH
   double mean_convexity = kNaN, min_convexity = kNaN;
   double largest_share = kNaN;  // volume of the largest part / building volume
   double cost = kNaN, g = kNaN, h = kNaN;
@@ -30,8 +30,8 @@ struct LevelOutcome {
   // Where the parts come from when this level was not reached before the deadline:
   // "" (searched), "previous level" or "singleton".
   std::string fallback;
-  int max_degree = 0;        // part adjacency graph
-  int end_parts = 0;         // parts with exactly one neighbour
+  int max_degree = 0;  // part adjacency graph
+  int end_parts = 0;   // parts with exactly one neighbour
   // What the level needed beyond per-part repairs for every part to pass the checks on the
   // output grid: "" (nothing), "cluster N" (vertices within N grid steps made one), or
   // "non-conforming" (each part's mesh on its own; docs/output-format.md §Validity).
@@ -56,9 +56,9 @@ struct Sizes {
 // Whole-building measures for the planners' CSV.
 struct Measures {
   std::optional<double> height, footprint_area, volume, convexity;
-  std::string footprint_method;       // "ground" or "hull" (see measures.hpp)
-  std::optional<Vec3> centroid;       // source CRS
-  std::string centroid_method;        // "solid" (volume centroid) or "bbox" (input box centre)
+  std::string footprint_method;                     // "ground" or "hull" (see measures.hpp)
+  std::optional<Vec3> centroid;                     // source CRS
+  std::string centroid_method;                      // "solid" (volume centroid) or "bbox" (input box centre)
   std::optional<std::pair<double, double>> lonlat;  // WGS84, filled by the run (needs the CRS)
 };
 
@@ -68,8 +68,8 @@ struct Measures {
 // `morphcut_volume_check` (docs/output-format.md).
 struct VolumeCheckOutcome {
   double estimate = kNaN, cell = kNaN, ratio = kNaN;
-  std::string method;   // "signed volume" or "vertical columns"; empty: no estimate
-  std::string oracle;   // "parity" or "vertical": the labelling kept
+  std::string method;  // "signed volume" or "vertical columns"; empty: no estimate
+  std::string oracle;  // "parity" or "vertical": the labelling kept
   bool open_input = false, relabelled = false, flagged = false;
   // The labelling's fast path for valid solids (docs/algorithm.md §6.6), or why not.
   bool fast_path = false;
@@ -77,21 +77,21 @@ struct VolumeCheckOutcome {
 };
 
 struct BuildingOutcome {
-  mc::io::Feature feature;  // the feature to write: input kept, parts and attributes added
-  bool is_building = false; // false: passed through untouched, not in the reports
+  mc::io::Feature feature;   // the feature to write: input kept, parts and attributes added
+  bool is_building = false;  // false: passed through untouched, not in the reports
   std::string id;
-  std::string status;       // ok, partial, failed, skipped
-  std::string reason;       // empty when ok
-  std::string lod;          // the input LoD decomposed
+  std::string status;  // ok, partial, failed, skipped
+  std::string reason;  // empty when ok
+  std::string lod;     // the input LoD decomposed
   Timings time;
   Sizes size;
   double hausdorff = kNaN;
   VolumeCheckOutcome volume_check;
   std::vector<LevelOutcome> levels;  // the written levels, in level order
   Measures measures;
-  BuildingMassing massing;  // part roles, contacts and building features (pipeline/massing.hpp)
-  std::vector<std::string> problems; // read/extraction/preprocessing problems (capped)
-  size_t sequence = 0;      // input order (set by the run)
+  BuildingMassing massing;            // part roles, contacts and building features (pipeline/massing.hpp)
+  std::vector<std::string> problems;  // read/extraction/preprocessing problems (capped)
+  size_t sequence = 0;                // input order (set by the run)
 };
 
 }  // namespace mc::pipeline

@@ -17,7 +17,8 @@ using nlohmann::json;
 
 int64_t VertexPool::add(const Vec3& v) {
   // Grid coordinates: the integers the writer will emit (or the exact doubles without transform).
-  const double s[3] = {t_.scale.x, t_.scale.y, t_.scale.z}, o[3] = {t_.translate.x, t_.translate.y, t_.translate.z};
+  const double s[3] = {t_.scale.x, t_.scale.y, t_.scale.z},
+               o[3] = {t_.translate.x, t_.translate.y, t_.translate.z};
   const double c[3] = {v.x, v.y, v.z};
   int64_t q[3];
   Vec3 snapped = v;
@@ -118,7 +119,8 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
   if (version == "1.0") out.geometry["lod"] = std::strtod(lod.c_str(), nullptr);
   else out.geometry["lod"] = lod;
   out.geometry["boundaries"] = json::array({boundaries});
-  if (!surfaces.empty()) out.geometry["semantics"] = {{"surfaces", surfaces}, {"values", json::array({values})}};
+  if (!surfaces.empty())
+    out.geometry["semantics"] = {{"surfaces", surfaces}, {"values", json::array({values})}};
   return out;
 }
 

@@ -44,17 +44,17 @@ class VertexPool {
 // A part's boundary on the output grid: faces of rings of VertexPool ids.
 struct GridFace {
   std::vector<std::vector<int64_t>> rings;
-  int32_t semantic = -1;  // into the part mesh's semantic_labels
-  int32_t neighbour = -1; // the part sharing this face (Polygon::neighbour), or -1
+  int32_t semantic = -1;   // into the part mesh's semantic_labels
+  int32_t neighbour = -1;  // the part sharing this face (Polygon::neighbour), or -1
 };
 
 struct EncodedSolid {
-  nlohmann::json geometry;  // {"type":"Solid","lod":...,"boundaries":...,"semantics":...}
-  Shell shell;              // the boundaries as written
-  size_t dropped_faces = 0; // faces that collapsed to nothing on the grid
-  size_t split_faces = 0;   // faces written as several polygons to pass the checks
-  bool repaired = false;    // the part needed a repair to pass the checks
-  double check_seconds = 0; // spent checking and repairing
+  nlohmann::json geometry;   // {"type":"Solid","lod":...,"boundaries":...,"semantics":...}
+  Shell shell;               // the boundaries as written
+  size_t dropped_faces = 0;  // faces that collapsed to nothing on the grid
+  size_t split_faces = 0;    // faces written as several polygons to pass the checks
+  bool repaired = false;     // the part needed a repair to pass the checks
+  double check_seconds = 0;  // spent checking and repairing
   // Empty when the written solid passes every check; otherwise why not (nothing may be written).
   std::string defect;
 };

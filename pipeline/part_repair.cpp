@@ -67,12 +67,14 @@ std::vector<std::vector<int64_t>> simple_loops(const std::vector<int64_t>& ring)
     }
   }
   loops.push_back(std::move(stack));
-  loops.erase(std::remove_if(loops.begin(), loops.end(), [](const auto& l) { return l.size() < 3; }), loops.end());
+  loops.erase(std::remove_if(loops.begin(), loops.end(), [](const auto& l) { return l.size() < 3; }),
+              loops.end());
   return loops;
 }
 
 // Is point p inside the ring, both projected along the normal's dominant axis?
-bool inside_projected(const Vec3& p, const std::vector<int64_t>& ring, const std::vector<Vec3>& pool, const Vec3& n) {
+bool inside_projected(const Vec3& p, const std::vector<int64_t>& ring, const std::vector<Vec3>& pool,
+                      const Vec3& n) {
   const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
   auto uv = [&](const Vec3& q) {
     return ax >= ay && ax >= az ? std::pair{q.y, q.z} : ay >= az ? std::pair{q.z, q.x} : std::pair{q.x, q.y};
@@ -93,7 +95,8 @@ std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>&
   const Vec3 n = ring_normal(f.rings[0], pool);
   std::vector<std::vector<int64_t>> outers, holes;
   for (const auto& ring : f.rings)
-    for (auto& loop : simple_loops(ring)) (dot(ring_normal(loop, pool), n) > 0 ? outers : holes).push_back(std::move(loop));
+    for (auto& loop : simple_loops(ring))
+      (dot(ring_normal(loop, pool), n) > 0 ? outers : holes).push_back(std::move(loop));
   std::vector<GridFace> out;
   for (auto& o : outers) out.push_back({{std::move(o)}, f.semantic, f.neighbour});
   if (out.empty()) return {f};
@@ -103,7 +106,9 @@ std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>&
     for (size_t k = 0; k < out.size(); ++k) {
       const double area = norm(ring_normal(out[k].rings[0], pool));
       const auto& outer = out[k].rings[0];
-      auto free = std::find_if(h.begin(), h.end(), [&](int64_t v) { return std::find(outer.begin(), outer.end(), v) == outer.end(); });
+      auto free = std::find_if(h.begin(), h.end(), [&](int64_t v) {
+        return std::find(outer.begin(), outer.end(), v) == outer.end();
+      });
       const bool contains = free != h.end() && inside_projected(pool[*free], outer, pool, n);
       if (contains && area > largest) host = k, largest = area;
     }
@@ -124,7 +129,8 @@ std::vector<GridFace> triangles_of(const GridFace& f, const std::vector<Vec3>& p
   std::vector<std::vector<uint32_t>> rings;
   for (const auto& ring : f.rings) {
     std::vector<uint32_t> r;
-    for (int64_t id : ring) r.push_back(static_cast<uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin()));
+    for (int64_t id : ring)
+      r.push_back(static_cast<uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin()));
     rings.push_back(std::move(r));
   }
   std::vector<std::array<uint32_t, 3>> tris;
@@ -167,11 +173,13 @@ size_t triangulate_bent_shared_faces(std::vector<GridFace>& faces, const std::ve
   return replaced;
 }
 
-std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool, SolidCheck* check) {
+std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool,
+                              SolidCheck* check) {
   const LocalMesh m = as_mesh(faces, pool);
   SolidCheck c = check_solid(m.mesh, val3dity_tolerances(), false);
   std::string defect;
-  if (!c.errors.empty()) defect = std::to_string(c.errors[0].code) + " " + c.errors[0].name + ": " + c.errors[0].message;
+  if (!c.errors.empty())
+    defect = std::to_string(c.errors[0].code) + " " + c.errors[0].name + ": " + c.errors[0].message;
   if (check) *check = std::move(c);
   return defect;
 }

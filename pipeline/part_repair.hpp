@@ -20,7 +20,7 @@ struct PartRepair {
   std::vector<GridFace> faces;  // the faces to write
   size_t split_faces = 0;       // input faces written as several polygons
   bool repaired = false;
-  std::string defect;           // empty = passes val3dity's rules at its default tolerances
+  std::string defect;  // empty = passes val3dity's rules at its default tolerances
 };
 
 // `pool` holds the coordinates of the ids in `faces`.

@@ -36,9 +36,11 @@ std::string Progress::render(size_t done, std::optional<size_t> total, size_t fl
     const int filled = static_cast<int>(f * kWidth);
     bar = "[" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] ";
     const double eta = rate > 0 ? static_cast<double>(*total - std::min(done, *total)) / rate : NAN;
-    std::snprintf(buf, sizeof buf, "%zu/%zu features  %.1f/s  ETA %s", done, *total, rate, clock_text(eta).c_str());
+    std::snprintf(buf, sizeof buf, "%zu/%zu features  %.1f/s  ETA %s", done, *total, rate,
+                  clock_text(eta).c_str());
   } else {
-    std::snprintf(buf, sizeof buf, "%zu features  %.1f/s  elapsed %s", done, rate, clock_text(seconds).c_str());
+    std::snprintf(buf, sizeof buf, "%zu features  %.1f/s  elapsed %s", done, rate,
+                  clock_text(seconds).c_str());
   }
   std::string line = bar + buf;
   if (flagged) line += "  (" + std::to_string(flagged) + " not ok)";

@@ -63,11 +63,15 @@ json building_report(const BuildingOutcome& b) {
   }
   json level_secs = json::array();
   for (const auto& l : b.levels) level_secs.push_back(secs(l.seconds));
-  j["timings"] = {{"read", secs(b.time.read)},       {"extract", secs(b.time.extract)},
-                  {"preprocess", secs(b.time.preprocess)}, {"decompose", secs(b.time.decompose)},
-                  {"levels", level_secs},            {"encode", secs(b.time.encode)},
+  j["timings"] = {{"read", secs(b.time.read)},
+                  {"extract", secs(b.time.extract)},
+                  {"preprocess", secs(b.time.preprocess)},
+                  {"decompose", secs(b.time.decompose)},
+                  {"levels", level_secs},
+                  {"encode", secs(b.time.encode)},
                   {"check", secs(b.time.check)},
-                  {"job", secs(b.time.job)},         {"write", secs(b.time.write)}};
+                  {"job", secs(b.time.job)},
+                  {"write", secs(b.time.write)}};
   j["timings"]["massing"] = secs(b.time.massing);
   j["sizes"] = {{"input_vertices", b.size.input_vertices},
                 {"input_faces", b.size.input_faces},
@@ -91,11 +95,12 @@ json building_report(const BuildingOutcome& b) {
   j["levels"] = std::move(levels);
   j["hausdorff"] = num(b.hausdorff);
   if (!b.volume_check.method.empty() || !b.volume_check.oracle.empty())  // docs/algorithm.md §6.5
-    j["volume_check"] = {{"estimate", num(b.volume_check.estimate)}, {"cell", num(b.volume_check.cell)},
-                         {"ratio", num(b.volume_check.ratio)},       {"method", b.volume_check.method},
-                         {"oracle", b.volume_check.oracle},          {"open_input", b.volume_check.open_input},
-                         {"relabelled", b.volume_check.relabelled},  {"flagged", b.volume_check.flagged},
-                         {"fast_path", b.volume_check.fast_path},    {"fast_path_reason", b.volume_check.fast_path_reason}};
+    j["volume_check"] = {
+        {"estimate", num(b.volume_check.estimate)}, {"cell", num(b.volume_check.cell)},
+        {"ratio", num(b.volume_check.ratio)},       {"method", b.volume_check.method},
+        {"oracle", b.volume_check.oracle},          {"open_input", b.volume_check.open_input},
+        {"relabelled", b.volume_check.relabelled},  {"flagged", b.volume_check.flagged},
+        {"fast_path", b.volume_check.fast_path},    {"fast_path_reason", b.volume_check.fast_path_reason}};
   if (b.massing.features.valid) {  // building massing features (pipeline/massing.hpp)
     nlohmann::json f = nlohmann::json::object();
     add_building_attributes(f, b.massing);
@@ -108,9 +113,7 @@ json building_report(const BuildingOutcome& b) {
 ReportWriter::ReportWriter(const std::string& path) : path_(path) {
   try {
     file_ = std::make_unique<mc::io::AtomicFile>(path);
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(path + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(path + ": " + e.what()); }
   spool_ = std::make_unique<mc::io::ScratchFile>(parent_dir(path));
 }
 
@@ -136,9 +139,7 @@ void ReportWriter::commit(const json& run) {
   o << (entries_ ? "\n  ]\n}\n" : "]\n}\n");
   try {
     file_->commit();
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(path_ + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(path_ + ": " + e.what()); }
 }
 
 }  // namespace mc::pipeline

@@ -60,7 +60,8 @@ using Msg = std::shared_ptr<Work>;
 double cpu_seconds() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
 }
 
 double peak_rss_mb() {
@@ -68,7 +69,6 @@ double peak_rss_mb() {
   getrusage(RUSAGE_SELF, &u);
   return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
-
 
 // Features in a CityJSONSeq file = non-empty lines after the first; for the progress bar only.
 std::optional<size_t> count_sequence_features(const std::string& path) {
@@ -186,7 +186,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     if (writes_level(rc, i)) written_levels.push_back(params.dec.levels[i]);
   std::vector<std::unique_ptr<mc::io::CityJsonWriter>> level_writers;
   for (double t : written_levels)
-    level_writers.push_back(std::make_unique<mc::io::CityJsonWriter>(level_output_path(opt.output, t), header));
+    level_writers.push_back(
+        std::make_unique<mc::io::CityJsonWriter>(level_output_path(opt.output, t), header));
   std::unique_ptr<ReportWriter> report;
   std::unique_ptr<SummaryWriter> summary;
   if (!opt.report.empty()) report = std::make_unique<ReportWriter>(opt.report);
@@ -197,7 +198,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   if (!opt.gpkg.empty()) gpkg = std::make_unique<MassingGpkgWriter>(opt.gpkg, header.crs, written_levels);
 
   std::optional<size_t> total;
-  if (opt.progress && opt.input != "-" && opt.input.ends_with(".jsonl")) total = count_sequence_features(opt.input);
+  if (opt.progress && opt.input != "-" && opt.input.ends_with(".jsonl"))
+    total = count_sequence_features(opt.input);
   Progress progress(opt.progress, total);
   std::optional<InterruptWatchdog> watchdog;
   if (opt.handle_signals) watchdog.emplace(opt.interrupt_grace_s);
@@ -297,7 +299,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         for (auto& lw : level_writers) lw->write(b.feature);
       }
       b.feature = mc::io::Feature{};  // release the geometry before the reports
-      ++written;  // (before the limiter is decremented: the source counts on it)
+      ++written;                      // (before the limiter is decremented: the source counts on it)
       b.time.write = since(t);
       ++res.features;
       // Freed geometry stays in glibc's per-thread arenas; hand it back now and then so that
@@ -308,7 +310,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
         ++res.counts[b.status];
         flagged += b.status == "failed" || b.status == "partial";
         if (b.measures.centroid && crs.valid())
-          b.measures.lonlat = crs.to_lonlat(b.measures.centroid->x, b.measures.centroid->y, b.measures.centroid->z);
+          b.measures.lonlat =
+              crs.to_lonlat(b.measures.centroid->x, b.measures.centroid->y, b.measures.centroid->z);
         if (report) report->add(b);
         if (summary) summary->add(b);
         if (graph) graph->add(b);
@@ -346,49 +349,53 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   res.peak_rss_mb = peak_rss_mb();
   if (report) {
     std::string sha;
-    if (hash.valid()) {
-      sha = hash.get();
-    }
+    if (hash.valid()) { sha = hash.get(); }
     std::error_code ec;
     const auto bytes = opt.input == "-" ? 0 : std::filesystem::file_size(opt.input, ec);
     using ojson = nlohmann::ordered_json;
     ojson counts = ojson::object();
     for (const char* s : kStatuses) counts[s] = res.counts[s];
     ojson level_outputs = ojson::array();
-    for (double t : written_levels) level_outputs.push_back({{"threshold", t}, {"cityjson", level_output_path(opt.output, t)}});
-    ojson run = {
-        {"tool", "morphcut-city"},
-        {"version", MC_VERSION},
-        {"input",
-         {{"path", opt.input},
-          {"format", reader.format()},
-          {"version", header.version},
-          {"crs", header.crs},
-          {"bytes", ec ? ojson(nullptr) : ojson(bytes)},
-          {"sha256", sha.empty() ? ojson(nullptr) : ojson(sha)}}},
-        {"outputs", {{"cityjson", opt.output}, {"levels", level_outputs}, {"report", opt.report}, {"summary", opt.summary}, {"graph", opt.graph}, {"gpkg", opt.gpkg}}},
-        {"config_file", opt.config_file.empty() ? ojson(nullptr) : ojson(opt.config_file)},
-        {"config", ojson::parse(effective_config_json(params, rc).dump())},
-        {"threads", res.threads},
-        {"in_flight", res.in_flight},
-        {"wall_seconds", res.wall_seconds},
-        {"buildings_per_second", res.wall_seconds > 0 ? res.buildings / res.wall_seconds : 0.0},
-        {"cpu_seconds", std::round(cpu_seconds() * 1e3) / 1e3},
-        {"peak_rss_mb", res.peak_rss_mb},
-        {"features", res.features},
-        {"building_count", res.buildings},
-        {"counts", counts},
-        {"cache", cache ? ojson{{"dir", cache->dir()},
-                                {"hits", res.cache.hits},
-                                {"misses", res.cache.misses},
-                                {"stored", res.cache.stored},
-                                {"not_stored", res.cache.not_stored},
-                                {"corrupt", res.cache.corrupt},
-                                {"store_errors", res.cache.store_errors}}
-                        : ojson(nullptr)},
-        {"crs_for_wgs84", crs.valid() ? ojson(header.crs) : ojson(nullptr)},
-        {"reader_problems", res.reader_problems},
-        {"dropped_feature_extras", writer.dropped_extras()}};
+    for (double t : written_levels)
+      level_outputs.push_back({{"threshold", t}, {"cityjson", level_output_path(opt.output, t)}});
+    ojson run = {{"tool", "morphcut-city"},
+                 {"version", MC_VERSION},
+                 {"input",
+                  {{"path", opt.input},
+                   {"format", reader.format()},
+                   {"version", header.version},
+                   {"crs", header.crs},
+                   {"bytes", ec ? ojson(nullptr) : ojson(bytes)},
+                   {"sha256", sha.empty() ? ojson(nullptr) : ojson(sha)}}},
+                 {"outputs",
+                  {{"cityjson", opt.output},
+                   {"levels", level_outputs},
+                   {"report", opt.report},
+                   {"summary", opt.summary},
+                   {"graph", opt.graph},
+                   {"gpkg", opt.gpkg}}},
+                 {"config_file", opt.config_file.empty() ? ojson(nullptr) : ojson(opt.config_file)},
+                 {"config", ojson::parse(effective_config_json(params, rc).dump())},
+                 {"threads", res.threads},
+                 {"in_flight", res.in_flight},
+                 {"wall_seconds", res.wall_seconds},
+                 {"buildings_per_second", res.wall_seconds > 0 ? res.buildings / res.wall_seconds : 0.0},
+                 {"cpu_seconds", std::round(cpu_seconds() * 1e3) / 1e3},
+                 {"peak_rss_mb", res.peak_rss_mb},
+                 {"features", res.features},
+                 {"building_count", res.buildings},
+                 {"counts", counts},
+                 {"cache", cache ? ojson{{"dir", cache->dir()},
+                                         {"hits", res.cache.hits},
+                                         {"misses", res.cache.misses},
+                                         {"stored", res.cache.stored},
+                                         {"not_stored", res.cache.not_stored},
+                                         {"corrupt", res.cache.corrupt},
+                                         {"store_errors", res.cache.store_errors}}
+                                 : ojson(nullptr)},
+                 {"crs_for_wgs84", crs.valid() ? ojson(header.crs) : ojson(nullptr)},
+                 {"reader_problems", res.reader_problems},
+                 {"dropped_feature_extras", writer.dropped_extras()}};
     if (!crs.valid() && !header.crs.empty()) run["crs_error"] = crs.error();
     report->commit(run);
   }

@@ -44,7 +44,8 @@ std::string closed_shell_defect(const Shell& shell) {
     for (const auto& ring : shell[f])
       for (size_t i = 0; i < ring.size(); ++i) edge_face[{ring[i], ring[(i + 1) % ring.size()]}] = f;
   mc::UnionFind faces(shell.size());
-  for (const auto& [e, f] : edge_face) faces.link(static_cast<uint32_t>(f), static_cast<uint32_t>(edge_face.at({e.second, e.first})));
+  for (const auto& [e, f] : edge_face)
+    faces.link(static_cast<uint32_t>(f), static_cast<uint32_t>(edge_face.at({e.second, e.first})));
   for (uint32_t f = 1; f < shell.size(); ++f)
     if (faces.find(f) != faces.find(0)) return "the faces form more than one connected shell";
   return {};

@@ -1,6 +1,6 @@
 // Is a shell closed: every edge used exactly twice, once in each direction, and the faces around
-// every vertex one fan? (The combinatorial half of a valid 2-manifold Solid; written parts must pass it, and the tests check the output
-// files with it after deduplicating vertices by coordinates.)
+// every vertex one fan? (The combinatorial half of a valid 2-manifold Solid; written parts must pass it, and
+// the tests check the output files with it after deduplicating vertices by coordinates.)
 #pragma once
 #include <cstdint>
 #include <string>

@@ -110,9 +110,7 @@ SummaryWriter::SummaryWriter(const std::string& path, std::vector<double> thresh
     : path_(path), thresholds_(std::move(thresholds)) {
   try {
     file_ = std::make_unique<mc::io::AtomicFile>(path);
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(path + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(path + ": " + e.what()); }
   csv_ = std::make_unique<mc::io::CsvWriter>(file_->stream());
   for (const auto& c : summary_columns(thresholds_)) csv_->field(c);
   csv_->end_row();
@@ -134,9 +132,7 @@ void SummaryWriter::add(const BuildingOutcome& b) {
 void SummaryWriter::commit() {
   try {
     file_->commit();
-  } catch (const std::exception& e) {
-    throw mc::io::WriteError(path_ + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw mc::io::WriteError(path_ + ": " + e.what()); }
 }
 
 }  // namespace mc::pipeline

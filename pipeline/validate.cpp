@@ -19,16 +19,26 @@ namespace vc = validate_code;
 
 const char* validate_error_name(int code) {
   switch (code) {
-    case vc::kPartsOverlap: return "BUILDINGPARTS_OVERLAP";
-    case vc::kPartsVolumeMismatch: return "PARTS_VOLUME_MISMATCH";
-    case vc::kLevelsVolumeMismatch: return "LEVELS_VOLUME_MISMATCH";
-    case vc::kPartCountMismatch: return "PART_COUNT_MISMATCH";
-    case vc::kOverlapNotComputed: return "OVERLAP_NOT_COMPUTED";
-    case vc::kPartsStatusMismatch: return "PARTS_STATUS_MISMATCH";
-    case vc::kReadProblem: return "READ_PROBLEM";
-    case vc::kParentsChildren: return "PARENTS_CHILDREN_INCONSISTENT";
-    case vc::kInvalidObject: return "INVALID_CITYOBJECT";
-    default: return solid_error_name(code);
+    case vc::kPartsOverlap:
+      return "BUILDINGPARTS_OVERLAP";
+    case vc::kPartsVolumeMismatch:
+      return "PARTS_VOLUME_MISMATCH";
+    case vc::kLevelsVolumeMismatch:
+      return "LEVELS_VOLUME_MISMATCH";
+    case vc::kPartCountMismatch:
+      return "PART_COUNT_MISMATCH";
+    case vc::kOverlapNotComputed:
+      return "OVERLAP_NOT_COMPUTED";
+    case vc::kPartsStatusMismatch:
+      return "PARTS_STATUS_MISMATCH";
+    case vc::kReadProblem:
+      return "READ_PROBLEM";
+    case vc::kParentsChildren:
+      return "PARENTS_CHILDREN_INCONSISTENT";
+    case vc::kInvalidObject:
+      return "INVALID_CITYOBJECT";
+    default:
+      return solid_error_name(code);
   }
 }
 
@@ -48,7 +58,8 @@ void add(ObjectReport& r, int code, std::string message) {
 bool is_our_part(const json& obj) {
   if (!obj.is_object() || obj.value("type", "") != "BuildingPart") return false;
   auto a = obj.find("attributes");
-  return a != obj.end() && a->is_object() && a->contains("morphcut_level") && (*a)["morphcut_level"].is_number();
+  return a != obj.end() && a->is_object() && a->contains("morphcut_level") &&
+         (*a)["morphcut_level"].is_number();
 }
 
 std::vector<std::string> string_list(const json& obj, const char* key) {
@@ -78,7 +89,8 @@ void check_structure(const std::string& id, const json& obj, const json& objects
     else
       for (size_t g = 0; g < obj["geometry"].size(); ++g) {
         const json& geom = obj["geometry"][g];
-        if (!geom.is_object() || !geom.contains("type") || !(geom.contains("boundaries") || geom.contains("template")))
+        if (!geom.is_object() || !geom.contains("type") ||
+            !(geom.contains("boundaries") || geom.contains("template")))
           add(r, vc::kInvalidObject, "geometry #" + std::to_string(g) + " lacks \"type\" or \"boundaries\"");
       }
   }
@@ -109,8 +121,9 @@ PolygonMesh part_solid(const json& obj, const mc::io::Feature& f, ObjectReport& 
   if (!g.contains("lod")) add(r, vc::kInvalidObject, "the Solid has no \"lod\"");
   if (g.contains("semantics")) {
     const json& s = g["semantics"];
-    const bool ok = s.is_object() && s.contains("values") && s["values"].is_array() && s["values"].size() == 1 &&
-                    s["values"][0].is_array() && s["values"][0].size() == b[0].size();
+    const bool ok = s.is_object() && s.contains("values") && s["values"].is_array() &&
+                    s["values"].size() == 1 && s["values"][0].is_array() &&
+                    s["values"][0].size() == b[0].size();
     if (!ok) add(r, vc::kInvalidObject, "semantics \"values\" do not match the shell's surfaces");
   }
   std::unordered_map<int64_t, uint32_t> local;
@@ -135,7 +148,8 @@ PolygonMesh part_solid(const json& obj, const mc::io::Feature& f, ObjectReport& 
     }
     m.faces.push_back(std::move(poly));
   }
-  if (bad_ref) add(r, vc::kInvalidObject, "the Solid refers to vertices that do not exist (dropped before checking)");
+  if (bad_ref)
+    add(r, vc::kInvalidObject, "the Solid refers to vertices that do not exist (dropped before checking)");
   return m;
 }
 
@@ -188,25 +202,30 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
     by_level[parts[i].level].push_back(i);
   }
   const json& attrs = bobj.contains("attributes") ? bobj["attributes"] : json::object();
-  if (attrs.contains("morphcut_levels") && attrs.contains("morphcut_parts") && attrs["morphcut_levels"].is_array() &&
-      attrs["morphcut_parts"].is_array() && attrs["morphcut_levels"].size() == attrs["morphcut_parts"].size()) {
+  if (attrs.contains("morphcut_levels") && attrs.contains("morphcut_parts") &&
+      attrs["morphcut_levels"].is_array() && attrs["morphcut_parts"].is_array() &&
+      attrs["morphcut_levels"].size() == attrs["morphcut_parts"].size()) {
     // A level output (docs/output-format.md) shows one level, named by the Building's
     // `morphcut_level`; a file without it holds every level's parts.
     const std::optional<double> shown = number_attribute(bobj, "morphcut_level");
     std::vector<double> declared;
     for (size_t l = 0; l < attrs["morphcut_levels"].size(); ++l) {
-      const double t = attrs["morphcut_levels"][l].is_number() ? attrs["morphcut_levels"][l].get<double>() : NAN;
+      const double t =
+          attrs["morphcut_levels"][l].is_number() ? attrs["morphcut_levels"][l].get<double>() : NAN;
       if (shown && t != *shown) continue;
       declared.push_back(t);
-      const size_t want = attrs["morphcut_parts"][l].is_number_unsigned() ? attrs["morphcut_parts"][l].get<size_t>() : 0;
+      const size_t want =
+          attrs["morphcut_parts"][l].is_number_unsigned() ? attrs["morphcut_parts"][l].get<size_t>() : 0;
       const size_t have = by_level.count(t) ? by_level[t].size() : 0;
       if (want != have)
-        add(building, vc::kPartCountMismatch, "level " + num(t) + ": morphcut_parts says " + std::to_string(want) +
-                                                  ", the file has " + std::to_string(have) + " parts");
+        add(building, vc::kPartCountMismatch,
+            "level " + num(t) + ": morphcut_parts says " + std::to_string(want) + ", the file has " +
+                std::to_string(have) + " parts");
     }
     for (double t : levels)
       if (std::find(declared.begin(), declared.end(), t) == declared.end())
-        add(building, vc::kPartCountMismatch, "parts of level " + num(t) + ", which morphcut_levels does not list");
+        add(building, vc::kPartCountMismatch,
+            "parts of level " + num(t) + ", which morphcut_levels does not list");
   } else {
     add(building, vc::kPartCountMismatch, "morphcut_levels / morphcut_parts missing or of different lengths");
   }
@@ -231,11 +250,12 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
         // (at most the smaller surface) are touching, not overlap.
         const double tol = opt.overlap + quantisation_bound(std::min(pa.check.area, pb.check.area), scale);
         if (!common) {
-          add(building, vc::kOverlapNotComputed, "level " + num(t) + ": the common volume of " + pa.id + " and " + pb.id +
-                                                     " could not be computed exactly");
+          add(building, vc::kOverlapNotComputed,
+              "level " + num(t) + ": the common volume of " + pa.id + " and " + pb.id +
+                  " could not be computed exactly");
         } else if (common->volume > tol) {
-          const std::string what = " m³ in common, " + num(2 * common->volume / common->area) + " m thick on average (tolerance " +
-                                   num(tol) + " m³)";
+          const std::string what = " m³ in common, " + num(2 * common->volume / common->area) +
+                                   " m thick on average (tolerance " + num(tol) + " m³)";
           add(pa.report, vc::kPartsOverlap, "overlaps " + pb.id + ": " + num(common->volume) + what);
           add(pb.report, vc::kPartsOverlap, "overlaps " + pa.id + ": " + num(common->volume) + what);
         }
@@ -251,26 +271,30 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
     if (!all_closed) continue;
     if (cell) {
       const double tol = opt.volume_rel * *cell + quantisation_bound(area, scale);
-      if (*cell > 0) counts.max_volume_deviation = std::max(counts.max_volume_deviation, std::abs(sum - *cell) / *cell);
+      if (*cell > 0)
+        counts.max_volume_deviation = std::max(counts.max_volume_deviation, std::abs(sum - *cell) / *cell);
       if (std::abs(sum - *cell) > tol)
-        add(building, vc::kPartsVolumeMismatch, "level " + num(t) + ": the parts add up to " + num(sum) +
-                                                    " m³, the cell has " + num(*cell) + " m³ (tolerance " + num(tol) + " m³)");
+        add(building, vc::kPartsVolumeMismatch,
+            "level " + num(t) + ": the parts add up to " + num(sum) + " m³, the cell has " + num(*cell) +
+                " m³ (tolerance " + num(tol) + " m³)");
     }
     if (!first_sum) {
       first_sum = sum, first_area = area, first_level = t;
     } else {
-      const double tol = opt.volume_rel * std::max(sum, *first_sum) + quantisation_bound(area + first_area, scale);
+      const double tol =
+          opt.volume_rel * std::max(sum, *first_sum) + quantisation_bound(area + first_area, scale);
       if (std::abs(sum - *first_sum) > tol)
-        add(building, vc::kLevelsVolumeMismatch, "level " + num(t) + " has " + num(sum) + " m³, level " + num(first_level) +
-                                                     " " + num(*first_sum) + " m³ (tolerance " + num(tol) + " m³)");
+        add(building, vc::kLevelsVolumeMismatch,
+            "level " + num(t) + " has " + num(sum) + " m³, level " + num(first_level) + " " +
+                num(*first_sum) + " m³ (tolerance " + num(tol) + " m³)");
     }
   }
 }
 
 }  // namespace
 
-std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::io::Header& h, const ValidateOptions& opt,
-                                           ValidationCounts& counts) {
+std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::io::Header& h,
+                                           const ValidateOptions& opt, ValidationCounts& counts) {
   ++counts.features;
   const json& objects = f.objects;
   std::map<std::string, ObjectReport> reports;  // every object's structure findings
@@ -290,7 +314,8 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
   counts.objects += reports.size();
 
   const mc::io::Transform t = mc::io::parse_transform(h.root, "header");
-  const double scale = t.present ? std::max({std::abs(t.scale.x), std::abs(t.scale.y), std::abs(t.scale.z)}) : 0.0;
+  const double scale =
+      t.present ? std::max({std::abs(t.scale.x), std::abs(t.scale.y), std::abs(t.scale.z)}) : 0.0;
   const SolidTolerances stol{opt.snap, opt.planarity, opt.normals_deg};
   std::vector<ObjectReport> out;
   std::set<std::string> emitted;
@@ -308,7 +333,8 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
       if (objects.contains(c) && is_our_part(objects[c])) ids.push_back(c);
     for (auto it = objects.begin(); it != objects.end(); ++it)
       if (is_our_part(*it) && std::find(ids.begin(), ids.end(), it.key()) == ids.end()) {
-        add(reports[it.key()], vc::kParentsChildren, "a morphcut part that the building does not list as a child");
+        add(reports[it.key()], vc::kParentsChildren,
+            "a morphcut part that the building does not list as a child");
         ids.push_back(it.key());
       }
     std::vector<Part> parts;
@@ -341,20 +367,24 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
     std::set<double> part_levels;
     for (const auto& id : ids) part_levels.insert(objects[id]["attributes"]["morphcut_level"].get<double>());
     if (part_levels.size() > 1)
-      add(br, vc::kPartsOverlap, "parts of " + std::to_string(part_levels.size()) +
-                                     " levels hang under one Building at the same LoD and overlap each other");
+      add(br, vc::kPartsOverlap,
+          "parts of " + std::to_string(part_levels.size()) +
+              " levels hang under one Building at the same LoD and overlap each other");
     std::vector<std::string> family{f.id};
     for (size_t k = 0; k < family.size() && !part_lods.empty(); ++k) {
       const json& o = objects[family[k]];
       for (const auto& g : o.value("geometry", json::array())) {
         if (!g.is_object()) continue;
-        const std::string type = g.value("type", ""), lod = g.contains("lod") ? mc::io::lod_string(g["lod"]) : "";
+        const std::string type = g.value("type", ""),
+                          lod = g.contains("lod") ? mc::io::lod_string(g["lod"]) : "";
         if ((type == "Solid" || type == "CompositeSolid") && part_lods.count(lod))
-          add(br, vc::kPartsOverlap, "the input " + type + " of " + family[k] + " at LoD " + lod +
-                                         " overlaps the morphcut parts at that LoD");
+          add(br, vc::kPartsOverlap,
+              "the input " + type + " of " + family[k] + " at LoD " + lod +
+                  " overlaps the morphcut parts at that LoD");
       }
       for (const auto& c : string_list(o, "children"))
-        if (objects.contains(c) && !is_our_part(objects[c]) && std::find(family.begin(), family.end(), c) == family.end())
+        if (objects.contains(c) && !is_our_part(objects[c]) &&
+            std::find(family.begin(), family.end(), c) == family.end())
           family.push_back(c);
     }
     const bool level_view = bobj.contains("attributes") && bobj["attributes"].is_object() &&
@@ -365,9 +395,11 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
       if (parts.empty()) add(br, vc::kPartsStatusMismatch, "status " + status + " but no morphcut parts");
       else check_tiling(br, bobj, parts, scale, opt, counts);
     } else if (!parts.empty()) {
-      add(br, vc::kPartsStatusMismatch, "status \"" + status + "\" but " + std::to_string(parts.size()) + " morphcut parts");
+      add(br, vc::kPartsStatusMismatch,
+          "status \"" + status + "\" but " + std::to_string(parts.size()) + " morphcut parts");
     } else {
-      br.note = status.empty() ? "no parts (not processed by morphcut-city)" : "no parts (status " + status + ")";
+      br.note =
+          status.empty() ? "no parts (not processed by morphcut-city)" : "no parts (status " + status + ")";
     }
     (parts.empty() ? counts.buildings_without_parts : counts.buildings_with_parts)++;
     counts.invalid_buildings += !br.valid();

@@ -19,7 +19,7 @@ namespace mc::pipeline {
 struct ValidateOptions {
   double planarity = val3dity_tolerances().planarity;  // m: face points off the face's least-squares plane
   double normals_deg = val3dity_tolerances().normals_deg;  // degrees between a face's triangles' normals
-  double overlap = 1e-3;     // m³: common volume of two parts of one level that is still "touching"
+  double overlap = 1e-3;  // m³: common volume of two parts of one level that is still "touching"
   double snap = val3dity_tolerances().snap;  // m: vertices this close are one vertex
   double volume_rel = 1e-6;  // relative tolerance of volume sums (the quantisation bound is added)
 };
@@ -75,8 +75,8 @@ struct ValidationSummary {
 
 // Every object of one feature (the building first, then its parts in "children" order, then
 // any other object with errors); counts updated.
-std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::io::Header& h, const ValidateOptions& opt,
-                                           ValidationCounts& counts);
+std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::io::Header& h,
+                                           const ValidateOptions& opt, ValidationCounts& counts);
 
 // The whole file; `sink` receives every report in file order. Throws io::ReadError when the file
 // cannot be read as CityJSON at all.

@@ -43,18 +43,22 @@ Exit codes:
 }  // namespace
 
 int validate_main(int argc, char** argv) {
-  CLI::App app{"morphcut-city validate - check a CityJSON file and every morphcut part in it", "morphcut-city validate"};
+  CLI::App app{"morphcut-city validate - check a CityJSON file and every morphcut part in it",
+               "morphcut-city validate"};
   std::string file, json_out;
   ValidateOptions opt;
   bool quiet = false;
   app.add_option("FILE", file, ".city.json or .city.jsonl (CityJSONSeq)")->required();
   app.add_option("--json", json_out, "write the JSON report to this file (- = stdout)");
-  app.add_option("--tolerance-planarity", opt.planarity, "max distance of a face's points to its plane, m (default 0.01, val3dity's)")
+  app.add_option("--tolerance-planarity", opt.planarity,
+                 "max distance of a face's points to its plane, m (default 0.01, val3dity's)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--tolerance-normals", opt.normals_deg,
-                 "max angle between the normals of a face's triangles, degrees (default 20, val3dity's; 0 = not checked)")
+                 "max angle between the normals of a face's triangles, degrees (default 20, val3dity's; 0 = "
+                 "not checked)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--tolerance-overlap", opt.overlap, "common volume two parts may have and still only touch, m³ (default 0.001)")
+  app.add_option("--tolerance-overlap", opt.overlap,
+                 "common volume two parts may have and still only touch, m³ (default 0.001)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--quiet,-q", quiet, "print nothing; only the exit code (and --json) tell");
   app.footer(kValidateFooter);
@@ -84,9 +88,7 @@ int validate_main(int argc, char** argv) {
     return s.valid() ? 0 : 1;
   } catch (const mc::io::ReadError& e) {
     std::fprintf(stderr, "morphcut-city validate: cannot read %s: %s\n", file.c_str(), e.what());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "morphcut-city validate: error: %s\n", e.what());
-  }
+  } catch (const std::exception& e) { std::fprintf(stderr, "morphcut-city validate: error: %s\n", e.what()); }
   return kExitUsage;
 }
 

@@ -15,7 +15,8 @@ double rounded(double v, double step) { return std::round(v / step) * step; }
 json to_json(const ObjectReport& r) {
   json j = {{"id", r.id}, {"type", r.type}, {"valid", r.valid()}};
   json errors = json::array();
-  for (const auto& e : r.errors) errors.push_back({{"code", e.code}, {"name", e.name}, {"message", e.message}});
+  for (const auto& e : r.errors)
+    errors.push_back({{"code", e.code}, {"name", e.name}, {"message", e.message}});
   j["errors"] = std::move(errors);
   if (!r.note.empty()) j["note"] = r.note;
   if (r.level) j["morphcut_level"] = *r.level;
@@ -39,9 +40,13 @@ json to_json(const ValidationCounts& c) {
           {"max_volume_deviation", rounded(c.max_volume_deviation, 1e-12)}};
 }
 
-JsonValidationWriter::JsonValidationWriter(std::ostream& out, const std::string& file, const ValidateOptions& opt)
+JsonValidationWriter::JsonValidationWriter(std::ostream& out, const std::string& file,
+                                           const ValidateOptions& opt)
     : out_(out) {
-  const json tol = {{"planarity_m", opt.planarity}, {"normals_deg", opt.normals_deg}, {"overlap_m3", opt.overlap}, {"snap_m", opt.snap},
+  const json tol = {{"planarity_m", opt.planarity},
+                    {"normals_deg", opt.normals_deg},
+                    {"overlap_m3", opt.overlap},
+                    {"snap_m", opt.snap},
                     {"volume_relative", opt.volume_rel}};
   out_ << "{\"file\":" << json(file).dump() << ",\"tolerances\":" << tol.dump() << ",\"objects\":[";
 }
@@ -52,7 +57,8 @@ void JsonValidationWriter::object(const ObjectReport& r) {
 }
 
 void JsonValidationWriter::finish(const ValidationSummary& s) {
-  out_ << "\n],\"counts\":" << to_json(s.counts).dump() << ",\"file_problems\":" << json(s.file_problems).dump()
+  out_ << "\n],\"counts\":" << to_json(s.counts).dump()
+       << ",\"file_problems\":" << json(s.file_problems).dump()
        << ",\"valid\":" << (s.valid() ? "true" : "false") << "}\n";
 }
 
@@ -65,12 +71,14 @@ void write_text_summary(std::ostream& out, const ValidationSummary& s) {
   const auto& c = s.counts;
   for (const auto& p : s.file_problems) out << s.file << ": file problem: " << p << "\n";
   char share[32] = "-";
-  if (c.parts) std::snprintf(share, sizeof share, "%.2f%%", 100.0 * static_cast<double>(c.valid_parts) / static_cast<double>(c.parts));
+  if (c.parts)
+    std::snprintf(share, sizeof share, "%.2f%%",
+                  100.0 * static_cast<double>(c.valid_parts) / static_cast<double>(c.parts));
   out << s.file << ": " << c.buildings << " buildings (" << c.buildings_with_parts << " with parts, "
-      << c.buildings_without_parts << " without, " << c.invalid_buildings << " invalid), " << c.parts << " parts: "
-      << c.valid_parts << " valid (" << share << "), " << c.invalid_parts << " invalid; " << c.other_invalid_objects
-      << " other invalid objects; " << c.overlap_tests << " exact overlap tests; largest volume deviation "
-      << c.max_volume_deviation << "\n"
+      << c.buildings_without_parts << " without, " << c.invalid_buildings << " invalid), " << c.parts
+      << " parts: " << c.valid_parts << " valid (" << share << "), " << c.invalid_parts << " invalid; "
+      << c.other_invalid_objects << " other invalid objects; " << c.overlap_tests
+      << " exact overlap tests; largest volume deviation " << c.max_volume_deviation << "\n"
       << (s.valid() ? "VALID" : "INVALID") << "\n";
 }
 

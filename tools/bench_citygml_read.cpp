@@ -36,7 +36,8 @@ int read_file(const std::string& path, bool dump) {
       objects += f.objects.size();
       vertices += f.vertices.size();
       problems += f.problems.size();
-      if (dump) std::printf("%s\n%s\n", f.objects.dump(1).c_str(), nlohmann::json(f.problems).dump(1).c_str());
+      if (dump)
+        std::printf("%s\n%s\n", f.objects.dump(1).c_str(), nlohmann::json(f.problems).dump(1).c_str());
     }
     if (dump)
       for (const auto& p : r.problems()) std::printf("file problem: %s\n", p.c_str());
@@ -45,9 +46,11 @@ int read_file(const std::string& path, bool dump) {
     return 1;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%-50s %8zu buildings %8zu objects %10zu vertices %6zu problems %7.2f s %9.0f buildings/s  peak RSS %6.1f MB\n",
-              std::filesystem::path(path).filename().c_str(), buildings, objects, vertices, problems, s,
-              s > 0 ? static_cast<double>(buildings) / s : 0.0, peak_rss_mb());
+  std::printf(
+      "%-50s %8zu buildings %8zu objects %10zu vertices %6zu problems %7.2f s %9.0f buildings/s  peak RSS "
+      "%6.1f MB\n",
+      std::filesystem::path(path).filename().c_str(), buildings, objects, vertices, problems, s,
+      s > 0 ? static_cast<double>(buildings) / s : 0.0, peak_rss_mb());
   return 0;
 }
 

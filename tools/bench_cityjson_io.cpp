@@ -28,7 +28,9 @@ using namespace mc::io;
 
 std::string tile_path(const char* ext = ".city.json") {
   if (const char* t = std::getenv("MC_BENCH_TILE"); t && *t && std::string(ext) == ".city.json") return t;
-  return (fs::path(__FILE__).parent_path().parent_path() / "datasets/3dbag" / ("3dbag_5910" + std::string(ext))).string();
+  return (fs::path(__FILE__).parent_path().parent_path() / "datasets/3dbag" /
+          ("3dbag_5910" + std::string(ext)))
+      .string();
 }
 
 std::string scratch_dir() {
@@ -210,10 +212,11 @@ void rss_check() {
   std::printf("  process baseline        : %7.1f MB / %7.1f MB\n", mb(base.maxrss_kb), mb(base.hwm_kb));
   std::printf("  1x tile  (%6.1f MB, %5zu buildings): %7.1f MB / %7.1f MB\n", fs::file_size(tile) / 1048576.0,
               one.buildings, mb(one.maxrss_kb), mb(one.hwm_kb));
-  std::printf("  10x tile (%6.1f MB, %5zu buildings): %7.1f MB / %7.1f MB\n", fs::file_size(replica) / 1048576.0,
-              ten.buildings, mb(ten.maxrss_kb), mb(ten.hwm_kb));
+  std::printf("  10x tile (%6.1f MB, %5zu buildings): %7.1f MB / %7.1f MB\n",
+              fs::file_size(replica) / 1048576.0, ten.buildings, mb(ten.maxrss_kb), mb(ten.hwm_kb));
   const double ratio = static_cast<double>(ten.maxrss_kb) / static_cast<double>(one.maxrss_kb);
-  std::printf("  ratio 10x / 1x          : %.2f (target <= 1.5) %s\n\n", ratio, ratio <= 1.5 ? "OK" : "OVER TARGET");
+  std::printf("  ratio 10x / 1x          : %.2f (target <= 1.5) %s\n\n", ratio,
+              ratio <= 1.5 ? "OK" : "OVER TARGET");
   std::fflush(stdout);
   fs::remove_all(dir);
 }
@@ -222,7 +225,8 @@ void rss_check() {
 
 int main(int argc, char** argv) {
   if (argc >= 3 && std::string(argv[1]) == "--rss-child") return rss_child(argv[2]);
-  if (argc >= 5 && std::string(argv[1]) == "--make-replica") return make_replica(argv[2], argv[3], std::atoi(argv[4]));
+  if (argc >= 5 && std::string(argv[1]) == "--make-replica")
+    return make_replica(argv[2], argv[3], std::atoi(argv[4]));
   bool check = true;
   std::vector<char*> rest;
   for (int i = 0; i < argc; ++i) {

@@ -66,8 +66,25 @@ void write_level_off(const std::string& path, const mc::Preprocessed& pre, const
     const double x = 1 - std::abs(std::fmod(hue / 60.0, 2) - 1);
     double r = 0, g = 0, b = 0;
     const int sector = static_cast<int>(hue / 60) % 6;
-    if (sector == 0) { r = 1; g = x; } else if (sector == 1) { r = x; g = 1; } else if (sector == 2) { g = 1; b = x; }
-    else if (sector == 3) { g = x; b = 1; } else if (sector == 4) { r = x; b = 1; } else { r = 1; b = x; }
+    if (sector == 0) {
+      r = 1;
+      g = x;
+    } else if (sector == 1) {
+      r = x;
+      g = 1;
+    } else if (sector == 2) {
+      g = 1;
+      b = x;
+    } else if (sector == 3) {
+      g = x;
+      b = 1;
+    } else if (sector == 4) {
+      r = x;
+      b = 1;
+    } else {
+      r = 1;
+      b = x;
+    }
     for (mc::Polygon f : m.faces) {
       for (auto& ring : f.rings)
         for (auto& v : ring) v += base;
@@ -121,8 +138,14 @@ int hausdorff_main(int argc, char** argv) {
   }
   const mc::TriangleSoup ta = mc::triangulate(a), tb = mc::triangulate(b);
   const mc::HausdorffResult h = mc::hausdorff(ta, tb, 0);
-  json r{{"a", argv[2]}, {"b", argv[3]}, {"a_to_b", h.a_to_b}, {"b_to_a", h.b_to_a}, {"symmetric", h.symmetric},
-         {"mean_a_to_b", h.mean_a_to_b}, {"mean_b_to_a", h.mean_b_to_a}, {"mean_symmetric", h.mean_symmetric}};
+  json r{{"a", argv[2]},
+         {"b", argv[3]},
+         {"a_to_b", h.a_to_b},
+         {"b_to_a", h.b_to_a},
+         {"symmetric", h.symmetric},
+         {"mean_a_to_b", h.mean_a_to_b},
+         {"mean_b_to_a", h.mean_b_to_a},
+         {"mean_symmetric", h.mean_symmetric}};
   std::cout << r.dump() << "\n";
   return 0;
 }
@@ -150,17 +173,16 @@ int main(int argc, char** argv) {
       else if (a == "--levels") levels = value();
       else if (a == "--set") sets.push_back(value());
       else return usage(("unknown option " + a).c_str());
-    } catch (const std::exception& e) {
-      return usage(e.what());
-    }
+    } catch (const std::exception& e) { return usage(e.what()); }
   }
 
   mc::Params params;
   try {
     if (config.empty() && fs::exists(input + "_config.json")) config = input + "_config.json";
     if (!config.empty()) {
-      params = config.size() > 5 && config.substr(config.size() - 5) == ".json" ? mc::load_paper_config(config)
-                                                                                : mc::load_config_file(config).params;
+      params = config.size() > 5 && config.substr(config.size() - 5) == ".json"
+                   ? mc::load_paper_config(config)
+                   : mc::load_config_file(config).params;
     }
     if (!sets.empty()) params = apply_sets(params, sets);
     if (!levels.empty()) {
@@ -174,11 +196,12 @@ int main(int argc, char** argv) {
   }
   if (timeout >= 0) params.timeout_s = timeout;
   std::unique_ptr<tbb::global_control> gc;
-  if (threads > 0) gc = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  if (threads > 0)
+    gc = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 
   const auto t0 = mc::Clock::now();
   const auto deadline = params.timeout_s > 0 ? t0 + std::chrono::duration_cast<mc::Clock::duration>(
-                                                       std::chrono::duration<double>(params.timeout_s))
+                                                        std::chrono::duration<double>(params.timeout_s))
                                              : mc::Clock::time_point::max();
   const std::string stem = fs::path(input).stem().string();
   json report{{"input", input}, {"status", "ok"}, {"reason", nullptr}};
@@ -187,22 +210,30 @@ int main(int argc, char** argv) {
     fs::create_directories(out);
     std::vector<std::string> problems;
     const bool obj = input.size() > 4 && input.substr(input.size() - 4) == ".obj";
-    const mc::PolygonMesh mesh = obj ? mc::io::read_obj(input, &problems) : mc::io::read_off(input, &problems);
+    const mc::PolygonMesh mesh =
+        obj ? mc::io::read_obj(input, &problems) : mc::io::read_off(input, &problems);
     mc::Preprocessed pre = mc::preprocess(mesh, params.pre, deadline);
     problems.insert(problems.end(), pre.problems.begin(), pre.problems.end());
     mc::io::write_off(out + "/" + stem + "_singleton.off", mc::singleton_mesh(pre));
-    report["preprocess"] = {{"seconds", pre.seconds},       {"hausdorff", pre.hausdorff},
+    report["preprocess"] = {{"seconds", pre.seconds},
+                            {"hausdorff", pre.hausdorff},
                             {"hausdorff_input_to_cell", pre.hausdorff_in_to_cell},
                             {"hausdorff_cell_to_input", pre.hausdorff_cell_to_in},
                             {"mean_distance", pre.mean_distance},
                             {"mean_distance_cell_to_input", pre.mean_distance_cell_to_in},
                             {"mean_distance_symmetric", pre.mean_distance_symmetric},
-                            {"planes", pre.regions},        {"hole_planes", pre.hole_planes},
-                            {"anchored_planes", pre.anchored_planes}, {"cells", pre.cells},
-                            {"interior_cells", pre.inside_cells}, {"components", pre.components.size()},
-                            {"closed", pre.closed},         {"manifold", pre.manifold},
-                            {"cell_size", pre.cell_size},   {"dist_thresh", pre.dist},
-                            {"up_axis", pre.up_axis == 1 ? "y" : "z"}, {"problems", problems}};
+                            {"planes", pre.regions},
+                            {"hole_planes", pre.hole_planes},
+                            {"anchored_planes", pre.anchored_planes},
+                            {"cells", pre.cells},
+                            {"interior_cells", pre.inside_cells},
+                            {"components", pre.components.size()},
+                            {"closed", pre.closed},
+                            {"manifold", pre.manifold},
+                            {"cell_size", pre.cell_size},
+                            {"dist_thresh", pre.dist},
+                            {"up_axis", pre.up_axis == 1 ? "y" : "z"},
+                            {"problems", problems}};
     double volume = 0;
     for (const auto& c : pre.components) volume += c.volume;
     {  // fingerprint of the complex (bit-exact vertices and interior cells): determinism checks
@@ -212,7 +243,9 @@ int main(int argc, char** argv) {
         const mc::Vec3& q = pre.complex->point(static_cast<uint32_t>(v));
         uint64_t b[3];
         std::memcpy(b, &q, sizeof b);
-        mixin(b[0]); mixin(b[1]); mixin(b[2]);
+        mixin(b[0]);
+        mixin(b[1]);
+        mixin(b[2]);
       }
       for (const auto& c : pre.components)
         for (uint32_t x : c.cells) mixin(x);
@@ -238,14 +271,23 @@ int main(int argc, char** argv) {
         write_level_off(out + "/" + stem + "_lod_" + lod_name(level.lod) + ".off", pre, level);
         json parts = json::array();
         for (const auto& p : level.parts)
-          parts.push_back({{"volume", p.volume}, {"hull_volume", p.hull_volume}, {"convexity", p.convexity},
+          parts.push_back({{"volume", p.volume},
+                           {"hull_volume", p.hull_volume},
+                           {"convexity", p.convexity},
                            {"neighbours", p.neighbours}});
-        levels_json.push_back({{"lod", level.lod}, {"parts", level.parts.size()}, {"cost", level.cost},
-                               {"g", level.g}, {"h", level.h}, {"convexity", level.convexity},
-                               {"min_convexity", level.min_convexity}, {"mean_convexity", level.mean_convexity},
+        levels_json.push_back({{"lod", level.lod},
+                               {"parts", level.parts.size()},
+                               {"cost", level.cost},
+                               {"g", level.g},
+                               {"h", level.h},
+                               {"convexity", level.convexity},
+                               {"min_convexity", level.min_convexity},
+                               {"mean_convexity", level.mean_convexity},
                                {"remaining_concave_edges", level.remaining_concave},
-                               {"nodes_expanded", level.nodes_expanded}, {"seconds", level.seconds},
-                               {"truncated", level.truncated}, {"part_list", parts}});
+                               {"nodes_expanded", level.nodes_expanded},
+                               {"seconds", level.seconds},
+                               {"truncated", level.truncated},
+                               {"part_list", parts}});
       }
       report["levels"] = levels_json;
       if (d.partial) {

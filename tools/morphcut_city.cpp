@@ -23,13 +23,14 @@
 
 namespace {
 
-
 // "tiles/5910.city.json" -> "5910"; "-" -> "stdin".
 std::string stem_of(const std::string& input) {
   if (input == "-") return "stdin";
   std::string name = std::filesystem::path(input).filename().string();
-  for (const char* ext : {".city.jsonl", ".city.json", ".jsonl", ".json", ".gml.gz", ".xml.gz", ".gml", ".xml"})
-    if (name.ends_with(ext) && name.size() > std::string(ext).size()) return name.substr(0, name.size() - std::string(ext).size());
+  for (const char* ext :
+       {".city.jsonl", ".city.json", ".jsonl", ".json", ".gml.gz", ".xml.gz", ".gml", ".xml"})
+    if (name.ends_with(ext) && name.size() > std::string(ext).size())
+      return name.substr(0, name.size() - std::string(ext).size());
   return name;
 }
 
@@ -41,7 +42,8 @@ std::string output_stem(const std::string& output) {
   return (p.parent_path() / name).string();
 }
 
-const char* kFooter = R"(Outputs (written to the current directory, REPORT and SUMMARY beside OUTPUT when -o is given):
+const char* kFooter =
+    R"(Outputs (written to the current directory, REPORT and SUMMARY beside OUTPUT when -o is given):
   OUTPUT   <stem>.morphcut.city.json (<stem>.morphcut.city.jsonl for CityJSONSeq input):
            the input unchanged (CityGML input: its buildings converted to CityJSON 2.0, see the
            README) plus, per building and output LoD level, convex BuildingParts
@@ -90,7 +92,8 @@ int main(int argc, char** argv) {
   // Subcommands come first; anything else is an input path (a file named "validate" can be given
   // as ./validate).
   if (argc > 1 && std::string(argv[1]) == "validate") return mc::pipeline::validate_main(argc - 1, argv + 1);
-  if (argc > 1 && std::string(argv[1]) == "merge-reports") return mc::pipeline::merge_reports_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "merge-reports")
+    return mc::pipeline::merge_reports_main(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "html") return mc::pipeline::html_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
@@ -100,27 +103,37 @@ int main(int argc, char** argv) {
   double timeout = -1;
   bool quiet = false, no_report = false, no_summary = false, no_html = false;
   // Required unless --print-config (checked after parsing).
-  CLI::Option* input_opt = app.add_option("INPUT", input, "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), .gml/.xml[.gz] (CityGML 1.0/2.0/3.0 buildings), or - for CityJSONSeq on stdin");
-  app.add_option("--config,-c", config_path, "YAML configuration (see config/lod.yaml; unknown keys are rejected)")
+  CLI::Option* input_opt =
+      app.add_option("INPUT", input,
+                     "input city: .city.json (CityJSON 1.0/1.1/2.0), .city.jsonl (CityJSONSeq), "
+                     ".gml/.xml[.gz] (CityGML 1.0/2.0/3.0 buildings), or - for CityJSONSeq on stdin");
+  app.add_option("--config,-c", config_path,
+                 "YAML configuration (see config/lod.yaml; unknown keys are rejected)")
       ->check(CLI::ExistingFile);
-  app.add_option("-o,--output", output, "output CityJSON; .jsonl writes CityJSONSeq (default: <stem>.morphcut.city.json[l])");
+  app.add_option("-o,--output", output,
+                 "output CityJSON; .jsonl writes CityJSONSeq (default: <stem>.morphcut.city.json[l])");
   app.add_option("--threads,-j", threads, "worker threads; 0 = all cores (default: config `threads`)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--timeout", timeout, "per-building deadline in seconds; 0 = none (default: config `timeout_s`)")
+  app.add_option("--timeout", timeout,
+                 "per-building deadline in seconds; 0 = none (default: config `timeout_s`)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--lod", lod, "input LoD to decompose, e.g. 2.2, or `highest` (default: config `lod`)");
   app.add_option("--report", report, "run report JSON (default: <stem>.morphcut.report.json)");
   app.add_option("--summary", summary, "summary CSV (default: <stem>.morphcut.csv)");
-  app.add_option("--cache", cache_dir,
-                 "per-building result cache directory: unchanged buildings (same geometry, config and version) "
-                 "reuse their earlier parts; safe to share between concurrent runs");
+  app.add_option(
+      "--cache", cache_dir,
+      "per-building result cache directory: unchanged buildings (same geometry, config and version) "
+      "reuse their earlier parts; safe to share between concurrent runs");
   app.add_flag("--no-report", no_report, "do not write the run report");
   app.add_flag("--no-summary", no_summary, "do not write the summary CSV");
-  app.add_option("--graph", graph, "part graphs, one building per line (default: <stem>.morphcut.graph.jsonl)");
+  app.add_option("--graph", graph,
+                 "part graphs, one building per line (default: <stem>.morphcut.graph.jsonl)");
   app.add_flag("--no-graph", no_graph, "do not write the part graphs");
-  app.add_option("--gpkg", gpkg, "GeoPackage of building and part footprints (default: <stem>.morphcut.gpkg)");
+  app.add_option("--gpkg", gpkg,
+                 "GeoPackage of building and part footprints (default: <stem>.morphcut.gpkg)");
   app.add_flag("--no-gpkg", no_gpkg, "do not write the GeoPackage");
-  app.add_option("--html", html, "HTML page of the run (default: the report's name with .report.json -> .html)");
+  app.add_option("--html", html,
+                 "HTML page of the run (default: the report's name with .report.json -> .html)");
   app.add_flag("--no-html", no_html, "do not write the HTML page");
   app.add_flag("--quiet,-q", quiet, "no progress bar and no final summary line on stderr");
   bool print_config = false;
@@ -128,9 +141,10 @@ int main(int argc, char** argv) {
                "print the effective configuration (defaults, then --config, then these options) as YAML with "
                "every key's help, and exit; with no --config it is config/lod.yaml");
   bool no_fast_path = false;
-  app.add_flag("--no-fast-path", no_fast_path,
-               "label every building by the full vote, also valid solids (config preprocess.fast_path: false; "
-               "for A/B benchmarks)");
+  app.add_flag(
+      "--no-fast-path", no_fast_path,
+      "label every building by the full vote, also valid solids (config preprocess.fast_path: false; "
+      "for A/B benchmarks)");
   app.set_version_flag("--version", MC_VERSION);
   app.footer(kFooter);
   if (const auto code = mc::pipeline::parse_or_exit(app, argc, argv)) return *code;
@@ -154,7 +168,9 @@ int main(int argc, char** argv) {
     const bool sequence = input == "-" || input.ends_with(".jsonl");
     mc::pipeline::RunOptions opt;
     opt.input = input;
-    opt.output = !output.empty() ? output : stem_of(input) + (sequence ? ".morphcut.city.jsonl" : ".morphcut.city.json");
+    opt.output = !output.empty()
+                     ? output
+                     : stem_of(input) + (sequence ? ".morphcut.city.jsonl" : ".morphcut.city.json");
     // The report and the summary go beside the output (`-o out/5910.city.json` gives
     // out/5910.morphcut.report.json), so a run with -o writes nothing into the current directory.
     const std::string stem = !output.empty() ? output_stem(output) : stem_of(input);
@@ -177,13 +193,16 @@ int main(int argc, char** argv) {
       spdlog::error("interrupted (signal {}); no output written", r.interrupted);
       return r.exit_code();
     }
-    spdlog::info("{} buildings ({} features) in {:.1f} s, {:.2f} buildings/s, {} threads: {} ok, {} partial, {} failed, "
-                 "{} skipped -> {}",
-                 r.buildings, r.features, r.wall_seconds, r.wall_seconds > 0 ? r.buildings / r.wall_seconds : 0.0,
-                 r.threads, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"), r.counts.at("skipped"),
-                 opt.output);
+    spdlog::info(
+        "{} buildings ({} features) in {:.1f} s, {:.2f} buildings/s, {} threads: {} ok, {} partial, {} "
+        "failed, "
+        "{} skipped -> {}",
+        r.buildings, r.features, r.wall_seconds, r.wall_seconds > 0 ? r.buildings / r.wall_seconds : 0.0,
+        r.threads, r.counts.at("ok"), r.counts.at("partial"), r.counts.at("failed"), r.counts.at("skipped"),
+        opt.output);
     if (!cache_dir.empty())
-      spdlog::info("cache {}: {} hits, {} misses, {} stored", cache_dir, r.cache.hits, r.cache.misses, r.cache.stored);
+      spdlog::info("cache {}: {} hits, {} misses, {} stored", cache_dir, r.cache.hits, r.cache.misses,
+                   r.cache.stored);
     for (const auto& p : r.reader_problems) spdlog::warn("input problem: {}", p);
     // The HTML page, from the outputs just written (timed: it should stay a few % of the run).
     if (!no_html) {
@@ -193,11 +212,14 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       try {
         const mc::pipeline::HtmlReportResult h = mc::pipeline::write_html_report(
-            opt.report, opt.report.empty() ? std::vector<std::string>{opt.output} : std::vector<std::string>{}, page);
+            opt.report,
+            opt.report.empty() ? std::vector<std::string>{opt.output} : std::vector<std::string>{}, page);
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        spdlog::info("HTML page ({:.2f} MB, 3D for {} of {} buildings) in {:.2f} s, {:.1f}% of the run's {:.1f} s -> {}",
-                     static_cast<double>(h.bytes) / 1e6, h.with_3d, h.buildings, s,
-                     r.wall_seconds > 0 ? 100.0 * s / r.wall_seconds : 0.0, r.wall_seconds, h.path);
+        spdlog::info(
+            "HTML page ({:.2f} MB, 3D for {} of {} buildings) in {:.2f} s, {:.1f}% of the run's {:.1f} s -> "
+            "{}",
+            static_cast<double>(h.bytes) / 1e6, h.with_3d, h.buildings, s,
+            r.wall_seconds > 0 ? 100.0 * s / r.wall_seconds : 0.0, r.wall_seconds, h.path);
       } catch (const std::exception& e) {
         // The run's outputs are complete; a page that cannot be made does not change the exit code.
         spdlog::error("HTML page not written: {}", e.what());
@@ -210,8 +232,6 @@ int main(int argc, char** argv) {
     spdlog::error("cannot read input: {}", e.what());
   } catch (const mc::io::WriteError& e) {
     spdlog::error("cannot write output: {}", e.what());
-  } catch (const std::exception& e) {
-    spdlog::error("error: {}", e.what());
-  }
+  } catch (const std::exception& e) { spdlog::error("error: {}", e.what()); }
   return mc::pipeline::kExitUsage;
 }

@@ -12,6 +12,7 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev
   slurm-wlm munge  # tests/slurm: a one-node Slurm cluster on localhost for the job-array test
+  clang-format  # tools/format.sh: the sources' style (.clang-format), checked by a test
   clang libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and clang's sanitizers
   libgeos-dev libboost-filesystem-dev  # tools/val3dity/build.sh: val3dity, the reference validator the tests run (with cmake, g++, CGAL, Eigen above)
   chromium  # tests/tools/html_browser_test.mjs: the HTML report in a real (headless) browser

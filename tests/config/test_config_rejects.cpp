@@ -11,7 +11,9 @@ struct Bad {
 };
 
 // Readable (and stable) test names in ctest instead of the struct's bytes.
-void PrintTo(const Bad& b, std::ostream* os) { *os << std::string(b.message).substr(0, std::string(b.message).find(':')); }
+void PrintTo(const Bad& b, std::ostream* os) {
+  *os << std::string(b.message).substr(0, std::string(b.message).find(':'));
+}
 
 class Rejects : public ::testing::TestWithParam<Bad> {};
 
@@ -28,15 +30,18 @@ TEST_P(Rejects, WithTheKeyPath) {
 INSTANTIATE_TEST_SUITE_P(
     Config, Rejects,
     ::testing::Values(
-        Bad{"decompose:\n  levels: [0.1, 0.1, 0.01]\n", "decompose.levels: must be strictly decreasing (test.yaml:2)"},
+        Bad{"decompose:\n  levels: [0.1, 0.1, 0.01]\n",
+            "decompose.levels: must be strictly decreasing (test.yaml:2)"},
         Bad{"decompose:\n  levels: [0.01, 0.1]\n", "decompose.levels: must be strictly decreasing"},
         Bad{"decompose:\n  levels: []\n", "decompose.levels: must not be empty"},
         Bad{"decompose:\n  levels: [0.1, 1.5]\n", "decompose.levels[1]: must be in (0, 1]"},
         Bad{"decompose:\n  levels: [0.1, x]\n", "decompose.levels[1]: expected a number, got 'x'"},
         Bad{"decompose:\n  levels: 0.1\n", "decompose.levels: expected a list of numbers"},
-        Bad{"preprocess:\n  angle_thresh_deg: 90\n", "preprocess.angle_thresh_deg: must be in (0, 90), got 90 (test.yaml:2)"},
+        Bad{"preprocess:\n  angle_thresh_deg: 90\n",
+            "preprocess.angle_thresh_deg: must be in (0, 90), got 90 (test.yaml:2)"},
         Bad{"preprocess:\n  max_angle_deg: 0\n", "preprocess.max_angle_deg: must be in (0, 90)"},
-        Bad{"preprocess:\n  cel_size: 1\n", "preprocess.cel_size: unknown key (did you mean 'cell_size'?) (test.yaml:2)"},
+        Bad{"preprocess:\n  cel_size: 1\n",
+            "preprocess.cel_size: unknown key (did you mean 'cell_size'?) (test.yaml:2)"},
         Bad{"preprocess:\n  zzz: 1\n", "preprocess.zzz: unknown key (test.yaml:2)"},
         Bad{"decompos:\n  sigma: 1\n", "decompos: unknown key (did you mean 'decompose'?)"},
         Bad{"timeout: 5\n", "timeout: unknown key (did you mean 'timeout_s'?)"},
@@ -45,12 +50,15 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"decompose:\n  sigma: .nan\n", "decompose.sigma: expected a number"},
         Bad{"decompose:\n  k: 2.5\n", "decompose.k: expected an integer, got '2.5'"},
         Bad{"decompose:\n  max_children: 0\n", "decompose.max_children: must be -1 (keep all) or >= 1"},
-        Bad{"decompose:\n  with_bisector: maybe\n", "decompose.with_bisector: expected true or false, got 'maybe'"},
+        Bad{"decompose:\n  with_bisector: maybe\n",
+            "decompose.with_bisector: expected true or false, got 'maybe'"},
         Bad{"decompose:\n  concave_thresh: 0.5\n", "decompose.concave_thresh: must be in [1, 2)"},
         Bad{"decompose:\n  node_budget: 0\n", "decompose.node_budget: must be >= 1"},
         Bad{"decompose:\n  revisit_candidates: -1\n", "decompose.revisit_candidates: must be >= 0 (0 = all)"},
-        Bad{"decompose:\n  first_level_candidates: -2\n", "decompose.first_level_candidates: must be >= -1 (-1 = max_candidates, 0 = all)"},
-        Bad{"decompose:\n  revisit_boundaries: 3\n", "decompose.revisit_boundaries: expected true or false, got '3'"},
+        Bad{"decompose:\n  first_level_candidates: -2\n",
+            "decompose.first_level_candidates: must be >= -1 (-1 = max_candidates, 0 = all)"},
+        Bad{"decompose:\n  revisit_boundaries: 3\n",
+            "decompose.revisit_boundaries: expected true or false, got '3'"},
         Bad{"decompose:\n  uncut_convexity: 0\n", "decompose.uncut_convexity: must be in (0, 1]"},
         Bad{"decompose: [1, 2]\n", "decompose: expected a mapping of keys, got a list"},
         Bad{"preprocess:\n  cell_size: 0\n", "preprocess.cell_size: must be > 0 or auto"},

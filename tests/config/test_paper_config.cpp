@@ -68,8 +68,9 @@ TEST(PaperConfig, OtherSamples) {
 class PaperFile : public ::testing::Test {
  protected:
   fs::path write(const std::string& text) {
-    path_ = fs::temp_directory_path() / ("mc_paper_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".json");
+    path_ = fs::temp_directory_path() /
+            ("mc_paper_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".json");
     std::ofstream(path_) << text;
     return path_;
   }
@@ -105,13 +106,14 @@ TEST_F(PaperFile, BadValuesNameThePaperKey) {
   auto message = [&](const std::string& json) -> std::string {
     try {
       mc::load_paper_config(write(json).string());
-    } catch (const mc::ConfigError& e) {
-      return e.what();
-    }
+    } catch (const mc::ConfigError& e) { return e.what(); }
     return "accepted";
   };
-  EXPECT_EQ(message(R"({"min_cut_factor": [0.1, 0.2]})").rfind("min_cut_factor: must be strictly decreasing", 0), 0u);
-  EXPECT_EQ(message(R"({"min_cut_factor": [0.1, -0.2]})").rfind("min_cut_factor[1]: must be in (0, 1]", 0), 0u);
+  EXPECT_EQ(
+      message(R"({"min_cut_factor": [0.1, 0.2]})").rfind("min_cut_factor: must be strictly decreasing", 0),
+      0u);
+  EXPECT_EQ(message(R"({"min_cut_factor": [0.1, -0.2]})").rfind("min_cut_factor[1]: must be in (0, 1]", 0),
+            0u);
   EXPECT_EQ(message(R"({"angle_thresh": 95})").rfind("angle_thresh: must be in (0, 90)", 0), 0u);
   EXPECT_EQ(message(R"({"cut_mode": "Z"})").rfind("cut_mode: must be one of", 0), 0u);
   EXPECT_EQ(message(R"({"sigma": "2"})").rfind("sigma: expected a number", 0), 0u);

@@ -42,7 +42,8 @@ TEST(YamlConfig, LodYamlIsTheKeyTablePrinted) {
 
 // Each key's range comes from the table, and the printed file loads back to the same values.
 TEST(YamlConfig, RangesComeFromTheTableAndThePrintedConfigLoadsBack) {
-  auto c = mc::load_config_string("decompose:\n  sigma: 1.5\n  levels: [0.2, 0.02]\npreprocess:\n  cell_size: 0.25\n");
+  auto c = mc::load_config_string(
+      "decompose:\n  sigma: 1.5\n  levels: [0.2, 0.02]\npreprocess:\n  cell_size: 0.25\n");
   const auto back = mc::load_config_string(mc::config_yaml(c.params, c.run));
   EXPECT_EQ(mc::effective_config_json(back.params, back.run), mc::effective_config_json(c.params, c.run));
   EXPECT_THROW(mc::load_config_string("massing:\n  roof_max_fill: 1.5\n"), mc::ConfigError);
@@ -58,14 +59,15 @@ TEST(YamlConfig, ConfigReferenceDocumentsEveryKey) {
   while (std::getline(in, line)) {
     if (line.rfind("## `", 0) == 0) section = line.substr(4, line.find(':') - 4) + ".";
     else if (line.rfind("## ", 0) == 0) section = line.rfind("## Top level", 0) == 0 ? "" : "-";
-    if (section != "-" && line.rfind("| `", 0) == 0) documented.insert(section + line.substr(3, line.find('`', 3) - 3));
+    if (section != "-" && line.rfind("| `", 0) == 0)
+      documented.insert(section + line.substr(3, line.find('`', 3) - 3));
   }
   const nlohmann::json j = mc::effective_config_json(mc::Params{}, mc::RunConfig{});
   for (const auto& [k, v] : j.items()) {
     if (v.is_object())
-      for (const auto& [k2, v2] : v.items()) EXPECT_TRUE(documented.count(k + "." + k2)) << k << "." << k2 << " is not in docs/config.md";
-    else
-      EXPECT_TRUE(documented.count(k)) << k << " is not in docs/config.md";
+      for (const auto& [k2, v2] : v.items())
+        EXPECT_TRUE(documented.count(k + "." + k2)) << k << "." << k2 << " is not in docs/config.md";
+    else EXPECT_TRUE(documented.count(k)) << k << " is not in docs/config.md";
   }
 }
 
@@ -78,14 +80,12 @@ TEST(YamlConfig, LodYamlListsEveryKey) {
     const std::string k = kv.first.Scalar();
     if (kv.second.IsMap())
       for (const auto& kv2 : kv.second) in_yaml.insert(k + "." + kv2.first.Scalar());
-    else
-      in_yaml.insert(k);
+    else in_yaml.insert(k);
   }
   for (const auto& [k, v] : j.items()) {
     if (v.is_object())
       for (const auto& [k2, v2] : v.items()) in_json.insert(k + "." + k2);
-    else
-      in_json.insert(k);
+    else in_json.insert(k);
   }
   EXPECT_EQ(in_yaml, in_json);
   EXPECT_GE(in_json.size(), 35u);  // 17 preprocess + 12 decompose + 2 top-level + 4 run keys

@@ -1,5 +1,6 @@
 // Synthetic buildings built in code: extruded footprints (with optional courtyard), a tower on a
-// podium, a gable house with a cross gable and one with a dormer. Faces are outward-oriented unless flipped by the caller.
+// podium, a gable house with a cross gable and one with a dormer. Faces are outward-oriented unless flipped
+// by the caller.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -11,14 +12,15 @@
 namespace mc::test {
 
 // Prism over a CCW footprint (x, y) from z0 to z1; `hole` (CW or CCW) makes a courtyard.
-inline void add_prism(PolygonMesh& m, const std::vector<std::pair<double, double>>& ring, double z0, double z1,
-                      const std::vector<std::pair<double, double>>& hole = {}) {
+inline void add_prism(PolygonMesh& m, const std::vector<std::pair<double, double>>& ring, double z0,
+                      double z1, const std::vector<std::pair<double, double>>& hole = {}) {
   auto add_ring = [&](const std::vector<std::pair<double, double>>& r, double z) {
     const uint32_t base = static_cast<uint32_t>(m.vertices.size());
     for (auto [x, y] : r) m.vertices.push_back({x, y, z});
     return base;
   };
-  const int roof = m.label_index("RoofSurface"), wall = m.label_index("WallSurface"), ground = m.label_index("GroundSurface");
+  const int roof = m.label_index("RoofSurface"), wall = m.label_index("WallSurface"),
+            ground = m.label_index("GroundSurface");
   const uint32_t b = add_ring(ring, z0), t = add_ring(ring, z1);
   const uint32_t n = static_cast<uint32_t>(ring.size());
   Polygon floor, top;
@@ -34,7 +36,7 @@ inline void add_prism(PolygonMesh& m, const std::vector<std::pair<double, double
     const uint32_t k = static_cast<uint32_t>(hole.size());
     std::vector<uint32_t> fr, tr;
     for (uint32_t i = 0; i < k; ++i) {
-      fr.push_back(hb + i);            // hole ring reversed relative to the outer
+      fr.push_back(hb + i);  // hole ring reversed relative to the outer
       tr.push_back(ht + k - 1 - i);
       // Courtyard walls face into the courtyard (hole given CCW).
       m.faces.push_back({{{hb + (i + 1) % k, hb + i, ht + i, ht + (i + 1) % k}}, wall});
@@ -71,7 +73,8 @@ inline PolygonMesh courtyard_building() {
 // A 10x10x4 podium with a 4x4x8 tower on top (a setback).
 inline PolygonMesh stepped_tower() {
   PolygonMesh m;
-  const int roof = m.label_index("RoofSurface"), wall = m.label_index("WallSurface"), ground = m.label_index("GroundSurface");
+  const int roof = m.label_index("RoofSurface"), wall = m.label_index("WallSurface"),
+            ground = m.label_index("GroundSurface");
   auto v = [&](double x, double y, double z) {
     m.vertices.push_back({x, y, z});
     return static_cast<uint32_t>(m.vertices.size() - 1);
@@ -141,7 +144,8 @@ inline PolygonMesh cross_gable_house() {
   FaceBuilder b;
   const double yv = 4 + 4.0 / 3;  // where the wing's ridge enters the main back slope
   const Vec3 up{0, 0, 1}, down{0, 0, -1};
-  b.face({{0, 0, 0}, {10, 0, 0}, {10, 8, 0}, {7, 8, 0}, {7, 14, 0}, {3, 14, 0}, {3, 8, 0}, {0, 8, 0}}, down, "GroundSurface");
+  b.face({{0, 0, 0}, {10, 0, 0}, {10, 8, 0}, {7, 8, 0}, {7, 14, 0}, {3, 14, 0}, {3, 8, 0}, {0, 8, 0}}, down,
+         "GroundSurface");
   b.face({{0, 0, 0}, {10, 0, 0}, {10, 0, 4}, {0, 0, 4}}, {0, -1, 0}, "WallSurface");
   b.face({{0, 0, 0}, {0, 8, 0}, {0, 8, 4}, {0, 4, 7}, {0, 0, 4}}, {-1, 0, 0}, "WallSurface");
   b.face({{10, 0, 0}, {10, 8, 0}, {10, 8, 4}, {10, 4, 7}, {10, 0, 4}}, {1, 0, 0}, "WallSurface");
@@ -151,7 +155,8 @@ inline PolygonMesh cross_gable_house() {
   b.face({{7, 8, 0}, {7, 14, 0}, {7, 14, 4}, {7, 8, 4}}, {1, 0, 0}, "WallSurface");
   b.face({{3, 14, 0}, {7, 14, 0}, {7, 14, 4}, {5, 14, 6}, {3, 14, 4}}, {0, 1, 0}, "WallSurface");
   b.face({{0, 0, 4}, {10, 0, 4}, {10, 4, 7}, {0, 4, 7}}, {0, -3, 4}, "RoofSurface");
-  b.face({{10, 8, 4}, {7, 8, 4}, {5, yv, 6}, {3, 8, 4}, {0, 8, 4}, {0, 4, 7}, {10, 4, 7}}, {0, 3, 4}, "RoofSurface");
+  b.face({{10, 8, 4}, {7, 8, 4}, {5, yv, 6}, {3, 8, 4}, {0, 8, 4}, {0, 4, 7}, {10, 4, 7}}, {0, 3, 4},
+         "RoofSurface");
   b.face({{3, 14, 4}, {3, 8, 4}, {5, yv, 6}, {5, 14, 6}}, {-1, 0, 1}, "RoofSurface");
   b.face({{7, 8, 4}, {7, 14, 4}, {5, 14, 6}, {5, yv, 6}}, {1, 0, 1}, "RoofSurface");
   (void)up;

@@ -25,7 +25,8 @@ inline PolygonMesh load_off(const std::string& path) {
     if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
     if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
   }
-  if (lines.empty() || lines[0].find("OFF") == std::string::npos) throw std::runtime_error("not OFF: " + path);
+  if (lines.empty() || lines[0].find("OFF") == std::string::npos)
+    throw std::runtime_error("not OFF: " + path);
   std::istringstream header(lines[0].substr(lines[0].find("OFF") + 3));
   size_t nv = 0, nf = 0, next = 1;
   if (!(header >> nv >> nf)) {

@@ -49,13 +49,15 @@ inline PolygonMesh box(Vec3 lo, Vec3 hi) {
 }
 
 // L-shaped footprint 10 x 8 with a 6 x 4 notch at (4..10, 4..8); 8 planes.
-inline std::vector<Vec3> l_footprint() { return {{0, 0, 0}, {10, 0, 0}, {10, 4, 0}, {4, 4, 0}, {4, 8, 0}, {0, 8, 0}}; }
+inline std::vector<Vec3> l_footprint() {
+  return {{0, 0, 0}, {10, 0, 0}, {10, 4, 0}, {4, 4, 0}, {4, 8, 0}, {0, 8, 0}};
+}
 inline PolygonMesh l_prism(bool with_floor = true) { return prism(l_footprint(), 6, with_floor); }
 
 // Gable house: footprint [0,w] x [0,l], walls up to h, ridge at height r along x (or along y
 // when ridge_along_y). 7 planes: floor, 4 walls, 2 roof slopes.
-inline PolygonMesh gable_house(double w = 10, double l = 8, double h = 4, double r = 7, bool ridge_along_y = false,
-                               bool with_floor = true) {
+inline PolygonMesh gable_house(double w = 10, double l = 8, double h = 4, double r = 7,
+                               bool ridge_along_y = false, bool with_floor = true) {
   PolygonMesh m;
   if (ridge_along_y) std::swap(w, l);
   // Built with the ridge along x, then x and y are swapped (with a reflection fix) if asked.

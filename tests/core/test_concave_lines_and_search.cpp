@@ -93,8 +93,8 @@ uint32_t find_plane(const Preprocessed& pre, const std::vector<uint32_t>& ids, V
   std::vector<uint32_t> hits;
   for (uint32_t id : ids)
     if (is_plane(pre, id, n, p)) hits.push_back(id);
-  EXPECT_EQ(hits.size(), 1u) << "plane n=(" << n.x << "," << n.y << "," << n.z << ") through (" << p.x << "," << p.y
-                             << "," << p.z << ")";
+  EXPECT_EQ(hits.size(), 1u) << "plane n=(" << n.x << "," << n.y << "," << n.z << ") through (" << p.x << ","
+                             << p.y << "," << p.z << ")";
   return hits.empty() ? UINT32_MAX : hits[0];
 }
 
@@ -174,7 +174,8 @@ void prepare_root(Preprocessed& pre, double level, SearchRoot& r) {
   r.input.deadline = Clock::now() + std::chrono::seconds(60);
   const std::vector<uint32_t> pool = r.input.pool;
   const PlaneRegistry& reg = *pre.planes;
-  const PlaneResolver lookup = [&reg, pool, ctx](const Plane& g, const std::vector<uint32_t>&) -> std::optional<uint32_t> {
+  const PlaneResolver lookup = [&reg, pool, ctx](const Plane& g,
+                                                 const std::vector<uint32_t>&) -> std::optional<uint32_t> {
     for (uint32_t id : pool)
       if (same_plane_in_box(g, reg[id], ctx.angle_rad, ctx.dist, ctx.box)) return id;
     return std::nullopt;
@@ -456,7 +457,9 @@ TEST(DirectSearch, BisectorOfTheUCutsOffACornerOfTheOtherProng) {
     pos[w] = all[w] & r.input.positive[k][w];
     neg[w] = all[w] & ~r.input.positive[k][w];
   }
-  const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) { return std::optional<uint32_t>{}; };
+  const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) {
+    return std::optional<uint32_t>{};
+  };
   std::vector<double> convex, concave;
   for (const Bits* side : {&pos, &neg})
     for (Bits& piece : components(r.space, *side)) {

@@ -40,7 +40,8 @@ void expect_closed(const PolygonMesh& m) {
   std::map<std::pair<Key, Key>, int> edges;
   for (const auto& f : m.faces)
     for (const auto& r : f.rings)
-      for (size_t i = 0; i < r.size(); ++i) edges[{key(m.vertices[r[i]]), key(m.vertices[r[(i + 1) % r.size()]])}]++;
+      for (size_t i = 0; i < r.size(); ++i)
+        edges[{key(m.vertices[r[i]]), key(m.vertices[r[(i + 1) % r.size()]])}]++;
   for (const auto& [e, n] : edges) {
     EXPECT_EQ(n, 1);
     EXPECT_EQ(edges.count({e.second, e.first}), 1u);
@@ -170,7 +171,6 @@ TEST(Decompose, CutFacesAreClosureSurfaces) {
   EXPECT_EQ(closure, 1);
 }
 
-
 // Revisiting previous-level boundaries (decompose.revisit_boundaries) on a real input: sample11, an
 // NYC crop at automatic resolution. Without it, each rooftop unit's first cut (upper box | lower
 // L-shape) is final and the L needs two more pieces; searching the pieces along that boundary
@@ -255,7 +255,8 @@ TEST(Decompose, FirstLevelChoosesAmongMoreCandidatePlanes) {
 // area with, the box's convexity fell to 0.81 and the building's from 0.996 to 0.914 (cost 1.58 ->
 // 2.04); merged where the convex hull grows least, the level stays as good as the one before.
 TEST(Decompose, TinyPartsMergeWhereTheHullGrowsLeast) {
-  const PolygonMesh m = test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000018414.off");
+  const PolygonMesh m =
+      test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000018414.off");
   PreprocessParams pp;
   pp.compute_hausdorff = false;
   const auto deadline = Clock::now() + std::chrono::seconds(60);

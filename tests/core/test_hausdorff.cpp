@@ -48,8 +48,8 @@ TEST(Hausdorff, OpenSoupAndAsymmetry) {
   const uint32_t a = test::add_vertex(walled, {0, 0, 1}), b = test::add_vertex(walled, {1, 0, 1});
   test::add_face(walled, {0, 1, b, a}, "WallSurface");
   const HausdorffResult r = hausdorff(triangulate(sq), triangulate(walled), 0.02);
-  EXPECT_LT(r.a_to_b, 1e-9);          // the square lies on the walled version
-  EXPECT_NEAR(r.b_to_a, 1.0, 1e-9);   // the wall's top edge is 1 m above the square
+  EXPECT_LT(r.a_to_b, 1e-9);         // the square lies on the walled version
+  EXPECT_NEAR(r.b_to_a, 1.0, 1e-9);  // the wall's top edge is 1 m above the square
   EXPECT_NEAR(r.symmetric, 1.0, 1e-9);
   // Means: nothing of the square is off; half of the walled area (the wall) is on average 0.5 m off.
   EXPECT_LT(r.mean_a_to_b, 1e-9);

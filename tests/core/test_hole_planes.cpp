@@ -41,7 +41,8 @@ TEST(HolePlanes, OpenBottomSmallAndNonPlanarHolesAreLeftOut) {
   // Loose faces (every edge a boundary edge of its own face): each face is a "hole" loop only
   // if it were planar and alone; two faces sharing a vertex make a non-simple component.
   PolygonMesh bow;
-  for (Vec3 v : {Vec3{0, 0, 1}, Vec3{1, 0, 1}, Vec3{1, 1, 1}, Vec3{2, 1, 1}, Vec3{2, 2, 1}}) test::add_vertex(bow, v);
+  for (Vec3 v : {Vec3{0, 0, 1}, Vec3{1, 0, 1}, Vec3{1, 1, 1}, Vec3{2, 1, 1}, Vec3{2, 2, 1}})
+    test::add_vertex(bow, v);
   test::add_face(bow, {0, 1, 2}, "RoofSurface");
   test::add_face(bow, {2, 3, 4}, "RoofSurface");
   EXPECT_TRUE(hole_planes(bow, 0.01, 0.01, 0).empty());

@@ -28,7 +28,8 @@ TEST(Hull, CoplanarCapsAreOneFacetEach) {
 // points (CGAL's triangulation of such facets does, and a part's reported hull volume once
 // differed in its last bit between two runs with two threads).
 TEST(Hull, ResultDoesNotDependOnThePointOrder) {
-  const PolygonMesh m = test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000018414.off");
+  const PolygonMesh m =
+      test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000018414.off");
   std::vector<Vec3> pts = m.vertices;
   ASSERT_GE(pts.size(), 8u);
   const Hull first = convex_hull(pts);

@@ -52,8 +52,9 @@ std::map<std::string, Cell> cells_of(const std::string& path, const std::set<std
     for (const auto& comp : pre.components) c.volume += comp.volume;
     c.check = pre.volume_check;
     c.open = pre.open_input;
-    c.info = "holes " + std::to_string(pre.hole_planes) + " walls " + std::to_string(pre.boundary_wall_planes) +
-             " cells " + std::to_string(pre.cells) + " boundary " + std::to_string(pre.open_boundary_length);
+    c.info = "holes " + std::to_string(pre.hole_planes) + " walls " +
+             std::to_string(pre.boundary_wall_planes) + " cells " + std::to_string(pre.cells) + " boundary " +
+             std::to_string(pre.open_boundary_length);
     for (const auto& pr : pre.problems) c.info += " | " + pr;
     out[f.id] = c;
   }
@@ -91,13 +92,15 @@ TEST(OpenModels, GableRoofOnlyIsTheRoofPrismOverTheLowestHeight) {
   EXPECT_NEAR(only_volume(c), 105.0, 0.01 * 105.0);
   EXPECT_EQ(c.begin()->second.check.oracle, "vertical");
   EXPECT_FALSE(c.begin()->second.check.flagged);
-  EXPECT_NEAR(only_volume(cells_of(source("datasets/open_models/gable_roof_only.closed.city.json"))), 455.0, 4.55);
+  EXPECT_NEAR(only_volume(cells_of(source("datasets/open_models/gable_roof_only.closed.city.json"))), 455.0,
+              4.55);
 }
 
 // With the terrain height a file gives (3D BAG h_maaiveld, Rotterdam TerrainHeight; here 0), a
 // model of roofs only stands on the terrain: the whole house, as its closed reference.
 TEST(OpenModels, RoofsOnlyStandOnTheTerrainHeightWhenTheFileGivesIt) {
-  for (const auto& [name, reference] : {std::pair{"gable_roof_only", 455.0}, std::pair{"l_shape_roof_only", 498.0}}) {
+  for (const auto& [name, reference] :
+       {std::pair{"gable_roof_only", 455.0}, std::pair{"l_shape_roof_only", 498.0}}) {
     SCOPED_TRACE(name);
     io::CityJsonReader r(source(std::string("datasets/open_models/") + name + ".city.json"));
     io::Feature f;
@@ -125,7 +128,8 @@ TEST(OpenModels, LShapeRoofOnlyStandsOnItsLowestRoof) {
   const auto c = cells_of(source("datasets/open_models/l_shape_roof_only.city.json"));
   EXPECT_NEAR(only_volume(c), 270.0, 0.01 * 270.0);
   EXPECT_FALSE(c.begin()->second.check.flagged);
-  EXPECT_NEAR(only_volume(cells_of(source("datasets/open_models/l_shape_roof_only.closed.city.json"))), 498.0, 4.98);
+  EXPECT_NEAR(only_volume(cells_of(source("datasets/open_models/l_shape_roof_only.closed.city.json"))), 498.0,
+              4.98);
 }
 
 // Storeys glued face to face with a floor sheet inside each: nothing of the tower is lost.
@@ -190,7 +194,8 @@ TEST(OpenModels, AFlaggedDisagreementReachesTheBuildingAndTheReport) {
   const auto& o = b.feature.objects;
   bool found = false;
   for (const auto& obj : o)
-    if (obj.is_object() && obj.contains("attributes") && obj["attributes"].contains("morphcut_volume_check")) {
+    if (obj.is_object() && obj.contains("attributes") &&
+        obj["attributes"].contains("morphcut_volume_check")) {
       const auto& v = obj["attributes"]["morphcut_volume_check"];
       EXPECT_NEAR(v["cell"].get<double>(), 105.0, 1.05);
       EXPECT_EQ(v["method"], "vertical columns");
@@ -211,17 +216,18 @@ TEST(OpenModels, AFlaggedDisagreementReachesTheBuildingAndTheReport) {
 // interior in 373 of the tile's 429 buildings; the last two are a detached house and a corner
 // house. MC_OPEN_DEBUG=1 prints every cell, estimate and oracle.
 TEST(OpenModels, ThreeDBagVariantsKeepTheOriginalVolume) {
-  const std::string tile = source("../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json");
+  const std::string tile =
+      source("../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json");
   if (!fs::exists(tile)) GTEST_SKIP() << "shared data not found: " << tile;
   const fs::path dir = fs::path(MC_BINARY_DIR) / ("open_models_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + tile + " " + dir.string() +
-                          " --seed 19 --variants a,b,c --no-ajv > /dev/null";
+  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + tile + " " +
+                          dir.string() + " --seed 19 --variants a,b,c --no-ajv > /dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  const std::set<std::string> ids = {
-      "NL.IMBAG.Pand.0503100000020594", "NL.IMBAG.Pand.0503100000020515", "NL.IMBAG.Pand.0503100000020426",
-      "NL.IMBAG.Pand.0503100000020424", "NL.IMBAG.Pand.0503100000021001", "NL.IMBAG.Pand.0503100000018414",
-      "NL.IMBAG.Pand.0503100000004247", "NL.IMBAG.Pand.0503100000029912"};
+  const std::set<std::string> ids = {"NL.IMBAG.Pand.0503100000020594", "NL.IMBAG.Pand.0503100000020515",
+                                     "NL.IMBAG.Pand.0503100000020426", "NL.IMBAG.Pand.0503100000020424",
+                                     "NL.IMBAG.Pand.0503100000021001", "NL.IMBAG.Pand.0503100000018414",
+                                     "NL.IMBAG.Pand.0503100000004247", "NL.IMBAG.Pand.0503100000029912"};
   const auto ref = cells_of(tile, ids);
   ASSERT_EQ(ref.size(), ids.size());
   for (const auto& [id, c] : ref) {  // closed originals: parity, checked against their own volume
@@ -235,10 +241,11 @@ TEST(OpenModels, ThreeDBagVariantsKeepTheOriginalVolume) {
     for (const auto& [id, c] : var) {
       SCOPED_TRACE(v + " " + id);
       if (std::getenv("MC_OPEN_DEBUG"))
-        std::printf("%s %s ref %.2f cell %.2f est %.2f (%s) oracle %s open %d relabel %d\n", v.c_str(), id.c_str(),
-                    ref.at(id).volume, c.volume, c.check.estimate, c.check.method.c_str(), c.check.oracle.c_str(),
-                    int(c.open), int(c.check.relabelled));
-      if (std::getenv("MC_OPEN_DEBUG")) std::printf("   %s\n   ref %s\n", c.info.c_str(), ref.at(id).info.c_str());
+        std::printf("%s %s ref %.2f cell %.2f est %.2f (%s) oracle %s open %d relabel %d\n", v.c_str(),
+                    id.c_str(), ref.at(id).volume, c.volume, c.check.estimate, c.check.method.c_str(),
+                    c.check.oracle.c_str(), int(c.open), int(c.check.relabelled));
+      if (std::getenv("MC_OPEN_DEBUG"))
+        std::printf("   %s\n   ref %s\n", c.info.c_str(), ref.at(id).info.c_str());
       EXPECT_NEAR(c.volume / ref.at(id).volume, 1.0, 0.02);
       EXPECT_FALSE(c.check.flagged);
     }

@@ -33,7 +33,8 @@ std::vector<Probe> l_probes() {
     out.push_back({p, !(p.x > 4 && p.y > 4)});
   }
   // And points outside the bounding box, above, below and beside.
-  for (Vec3 p : {Vec3{2, 2, 7}, Vec3{2, 2, -1}, Vec3{-1, 2, 3}, Vec3{11, 2, 3}, Vec3{7, 6, 100}}) out.push_back({p, false});
+  for (Vec3 p : {Vec3{2, 2, 7}, Vec3{2, 2, -1}, Vec3{-1, 2, 3}, Vec3{11, 2, 3}, Vec3{7, 6, 100}})
+    out.push_back({p, false});
   return out;
 }
 
@@ -91,11 +92,11 @@ TEST(Oracle, OverlappingShellsGluedAlongAnEdge) {
   const TriangleSoup soup = triangulate(clean_soup(m, 1e-9, nullptr));
   const InsideOracle oracle(soup, 7, 1);
   uint64_t id = 0;
-  EXPECT_TRUE(oracle.inside({1.85, 1.85, 1}, id++));   // in both shells
-  EXPECT_TRUE(oracle.inside({0.5, 0.5, 1}, id++));     // in the box only
-  EXPECT_TRUE(oracle.inside({2.3, 1.4, 1}, id++));     // in the prism only, beside the box
-  EXPECT_FALSE(oracle.inside({1.85, 1.85, 2.5}, id++)); // above both
-  EXPECT_FALSE(oracle.inside({2.8, 2.8, 1}, id++));    // beside the shared edge, outside both
+  EXPECT_TRUE(oracle.inside({1.85, 1.85, 1}, id++));     // in both shells
+  EXPECT_TRUE(oracle.inside({0.5, 0.5, 1}, id++));       // in the box only
+  EXPECT_TRUE(oracle.inside({2.3, 1.4, 1}, id++));       // in the prism only, beside the box
+  EXPECT_FALSE(oracle.inside({1.85, 1.85, 2.5}, id++));  // above both
+  EXPECT_FALSE(oracle.inside({2.8, 2.8, 1}, id++));      // beside the shared edge, outside both
 }
 
 // Two storeys whose floor is one sheet inside the solid, glued to the walls along the z = 3 ring
@@ -156,7 +157,7 @@ TEST(Oracle, EnclosureStaysOffWithoutNonManifoldEdges) {
 
 TEST(Oracle, JitteredSoupWithOneRay) {
   PolygonMesh m = test::explode(test::as_mesh(triangulate(test::l_prism()), test::l_prism()));
-  test::jitter(m, 0.001, 9);  // cracks of up to 2 mm between faces
+  test::jitter(m, 0.001, 9);           // cracks of up to 2 mm between faces
   EXPECT_LE(misclassified(m, 1), 10);  // a single ray may slip through a crack
   EXPECT_EQ(misclassified(m, 7), 0);
 }
@@ -175,7 +176,7 @@ TEST(Oracle, SharedEdgesAndVerticesCountOnce) {
 
 TEST(Oracle, GableHouseOpenBottom) {
   const InsideOracle oracle(triangulate(test::gable_house(10, 8, 4, 7, false, false)), 7, 3);
-  EXPECT_TRUE(oracle.inside({5, 4, 6.5}, 0));   // in the attic, under the ridge
+  EXPECT_TRUE(oracle.inside({5, 4, 6.5}, 0));     // in the attic, under the ridge
   EXPECT_FALSE(oracle.inside({5, 0.5, 6.5}, 1));  // above the roof slope, inside the bbox
   EXPECT_TRUE(oracle.inside({0.1, 0.1, 0.1}, 2));
 }
@@ -235,9 +236,9 @@ TEST(Oracle, SamplesThroughput) {
     EXPECT_GT(frac, 0.05) << s.name;
     EXPECT_LT(frac, 0.95) << s.name;
     const double secs = std::chrono::duration<double>(t2 - t1).count();
-    std::printf("[ oracle   ] %s: %zu triangles, build %.1f ms, %.0f points/s (7 rays), inside %.3f\n", s.name.c_str(),
-                soup.triangles.size(), std::chrono::duration<double, std::milli>(t1 - t0).count(), pts.size() / secs,
-                frac);
+    std::printf("[ oracle   ] %s: %zu triangles, build %.1f ms, %.0f points/s (7 rays), inside %.3f\n",
+                s.name.c_str(), soup.triangles.size(),
+                std::chrono::duration<double, std::milli>(t1 - t0).count(), pts.size() / secs, frac);
   }
 }
 

@@ -108,9 +108,9 @@ TEST_P(Preprocess, DefectsKeepTheCellClosedAndClose) {
   const PolygonMesh clean = GetParam().building();
   const Preprocessed ref = run(clean);
   const std::pair<const char*, Defect> defects[] = {
-      {"open bottom", open_bottom},       {"30% flipped faces", flip_30_percent},
+      {"open bottom", open_bottom},          {"30% flipped faces", flip_30_percent},
       {"duplicated faces", duplicate_faces}, {"missing wall face", missing_wall},
-      {"1 mm jitter", jitter_1mm},        {"intersecting duplicate walls", intersecting_duplicate_walls}};
+      {"1 mm jitter", jitter_1mm},           {"intersecting duplicate walls", intersecting_duplicate_walls}};
   for (const auto& [name, defect] : defects) {
     SCOPED_TRACE(name);
     const Preprocessed pre = run(defect(clean));
@@ -120,12 +120,13 @@ TEST_P(Preprocess, DefectsKeepTheCellClosedAndClose) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Synthetic, Preprocess,
-                         ::testing::Values(Case{"box", test::box_building}, Case{"L", test::l_building},
-                                           Case{"U", test::u_building}, Case{"courtyard", test::courtyard_building},
-                                           Case{"stepped_tower", test::stepped_tower}, Case{"T", test::t_building},
-                                           Case{"cross_gable", test::cross_gable_house}, Case{"dormer", test::dormer_house}),
-                         [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(
+    Synthetic, Preprocess,
+    ::testing::Values(Case{"box", test::box_building}, Case{"L", test::l_building},
+                      Case{"U", test::u_building}, Case{"courtyard", test::courtyard_building},
+                      Case{"stepped_tower", test::stepped_tower}, Case{"T", test::t_building},
+                      Case{"cross_gable", test::cross_gable_house}, Case{"dormer", test::dormer_house}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 // Real open-bottom inputs (walls and roof, no floor) at the paper's resolution: the cell's floor
 // lies at the input's lowest level. A cell reaching out of the open bottom touches no input face;
@@ -157,7 +158,8 @@ TEST(Preprocess, StackedStoreyShellsOfAFloatInputAllStayInside) {
   for (const auto& s : test::samples()) {
     if (s.name != "sample18") continue;
     const PreprocessParams p = test::paper_params(s);
-    const Preprocessed pre = preprocess(test::load_off(s.off.string()), p, Clock::now() + std::chrono::seconds(60));
+    const Preprocessed pre =
+        preprocess(test::load_off(s.off.string()), p, Clock::now() + std::chrono::seconds(60));
     double volume = 0;
     for (const auto& c : pre.components) volume += c.volume;
     EXPECT_NEAR(volume, 112680.0, 0.02 * 112680.0);
@@ -200,7 +202,8 @@ TEST(Preprocess, StoreysUnderInteriorFloorSheetsStayInside) {
 // min_gap that cut is made and the cell follows the building; without it a 7.6 m³ chunk of air
 // stays inside.
 TEST(Preprocess, HairBlockedCellIsCutWhenTheGapIsSafe) {
-  const PolygonMesh m = test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000004560.off");
+  const PolygonMesh m =
+      test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000004560.off");
   PreprocessParams p;
   p.compute_hausdorff = true;
   const Preprocessed with_gap = preprocess(m, p, Clock::now() + std::chrono::seconds(60));

@@ -78,8 +78,7 @@ TEST(Segmentation, PlanesAndAreasAreRight) {
     if (r.bbox.lo.z > 5) EXPECT_GT(r.plane.n.z, 0.99);
   // Semantic labels: roof region labelled Roof.
   const PolygonMesh m = test::l_prism();
-  for (const auto& r : rs)
-    EXPECT_EQ(r.semantic, m.faces[r.faces[0]].semantic);
+  for (const auto& r : rs) EXPECT_EQ(r.semantic, m.faces[r.faces[0]].semantic);
 }
 
 TEST(Segmentation, IndependentOfFaceOrientation) {
@@ -154,7 +153,8 @@ TEST(Segmentation, AreaFilterDropsSmallPlanes) {
 }
 
 TEST(Segmentation, MinRegionReleasesSmallRegions) {
-  const PolygonMesh tri = test::as_mesh(triangulate(test::box({0, 0, 0}, {1, 1, 1})), test::box({0, 0, 0}, {1, 1, 1}));
+  const PolygonMesh tri =
+      test::as_mesh(triangulate(test::box({0, 0, 0}, {1, 1, 1})), test::box({0, 0, 0}, {1, 1, 1}));
   SegmentationParams p = params();
   p.min_region = 3;  // every face is 2 triangles: no region is large enough
   EXPECT_TRUE(segment_planes(tri, p).empty());
@@ -189,8 +189,12 @@ TEST(Segmentation, EverySample) {
     const SegmentationParams p = sample_params(s);
     const auto t0 = std::chrono::steady_clock::now();
     const auto rs = segment_planes(m, p);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (ms > worst_ms) { worst_ms = ms; worst = s.name; }
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (ms > worst_ms) {
+      worst_ms = ms;
+      worst = s.name;
+    }
     ASSERT_FALSE(rs.empty()) << s.name;
     expect_partition(rs, m.faces.size());
     double covered = 0, total = 0;
@@ -201,15 +205,16 @@ TEST(Segmentation, EverySample) {
       // Every face vertex stays near its plane (merge refits may move it by up to δ).
       for (uint32_t f : r.faces)
         for (uint32_t v : m.faces[f].rings[0])
-          EXPECT_LE(std::abs(r.plane.signed_distance(m.vertices[v])), p.max_distance + p.dist_thresh + 1e-9) << s.name;
+          EXPECT_LE(std::abs(r.plane.signed_distance(m.vertices[v])), p.max_distance + p.dist_thresh + 1e-9)
+              << s.name;
     }
     // The planes explain most of the building surface.
     EXPECT_GT(covered, 0.8 * total) << s.name;
     // Close to the paper's own plane count (CGAL 6 region growing + pointer-ordered merge).
     const double rc = s.used.at("planar_region");
     EXPECT_LE(std::abs(static_cast<double>(rs.size()) - rc), std::max(3.0, 0.1 * rc)) << s.name;
-    std::printf("[ segment  ] %-9s faces %5zu  planes %4zu (paper %3.0f)  covered %.3f  %.1f ms\n", s.name.c_str(),
-                m.faces.size(), rs.size(), rc, covered / total, ms);
+    std::printf("[ segment  ] %-9s faces %5zu  planes %4zu (paper %3.0f)  covered %.3f  %.1f ms\n",
+                s.name.c_str(), m.faces.size(), rs.size(), rc, covered / total, ms);
   }
   std::printf("[ segment  ] slowest: %s %.1f ms\n", worst.c_str(), worst_ms);
 }

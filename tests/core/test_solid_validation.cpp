@@ -19,9 +19,16 @@ PolygonMesh mesh(std::vector<Vec3> v, const std::vector<Rings>& faces) {
 
 // Axis-aligned box, faces counter-clockwise seen from outside.
 PolygonMesh box(Vec3 lo, Vec3 hi) {
-  return mesh({{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-               {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}},
-              {{{0, 3, 2, 1}}, {{4, 5, 6, 7}}, {{0, 1, 5, 4}}, {{2, 3, 7, 6}}, {{0, 4, 7, 3}}, {{1, 2, 6, 5}}});
+  return mesh(
+      {{lo.x, lo.y, lo.z},
+       {hi.x, lo.y, lo.z},
+       {hi.x, hi.y, lo.z},
+       {lo.x, hi.y, lo.z},
+       {lo.x, lo.y, hi.z},
+       {hi.x, lo.y, hi.z},
+       {hi.x, hi.y, hi.z},
+       {lo.x, hi.y, hi.z}},
+      {{{0, 3, 2, 1}}, {{4, 5, 6, 7}}, {{0, 1, 5, 4}}, {{2, 3, 7, 6}}, {{0, 4, 7, 3}}, {{1, 2, 6, 5}}});
 }
 
 PolygonMesh unit_cube() { return box({0, 0, 0}, {1, 1, 1}); }
@@ -78,13 +85,20 @@ TEST(SolidValidation, FrameWithAHoleThroughIt) {
   std::vector<Vec3> v;
   for (double z : {0.0, 1.0}) {
     for (auto [x, y] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}}) v.push_back({x, y, z});
-    for (auto [x, y] : {std::pair{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}}) v.push_back({x, y, z});
+    for (auto [x, y] : {std::pair{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}})
+      v.push_back({x, y, z});
   }
   // Bottom: outer 0-3, inner 4-7; top: outer 8-11, inner 12-15.
   const SolidCheck c = check_solid(mesh(v, {{{0, 3, 2, 1}, {4, 5, 6, 7}},
                                             {{8, 9, 10, 11}, {12, 15, 14, 13}},
-                                            {{0, 1, 9, 8}}, {{2, 3, 11, 10}}, {{0, 8, 11, 3}}, {{1, 2, 10, 9}},
-                                            {{4, 7, 15, 12}}, {{5, 13, 14, 6}}, {{5, 4, 12, 13}}, {{7, 6, 14, 15}}}));
+                                            {{0, 1, 9, 8}},
+                                            {{2, 3, 11, 10}},
+                                            {{0, 8, 11, 3}},
+                                            {{1, 2, 10, 9}},
+                                            {{4, 7, 15, 12}},
+                                            {{5, 13, 14, 6}},
+                                            {{5, 4, 12, 13}},
+                                            {{7, 6, 14, 15}}}));
   EXPECT_TRUE(c.valid()) << describe(c);
   EXPECT_NEAR(c.volume, 0.75, 1e-12);
   EXPECT_NEAR(c.convexity, 0.75, 1e-9);
@@ -144,9 +158,10 @@ TEST(SolidValidation, NonPlanarQuadBeyondTheToleranceOnly) {
   m.vertices[6].z += 0.01;  // only the top face bends (the move is in the planes of the sides)
   SolidCheck c = check_solid(m);
   EXPECT_EQ(codes(c), std::vector<int>{203}) << describe(c);
-  EXPECT_NE(c.errors[0].message.find("face 1: a point lies 0.0025 m"), std::string::npos) << c.errors[0].message;
+  EXPECT_NE(c.errors[0].message.find("face 1: a point lies 0.0025 m"), std::string::npos)
+      << c.errors[0].message;
   EXPECT_TRUE(c.closed_manifold);  // the shell checks still ran
-  m.vertices[6].z = 1.0008;  // 0.2 mm off the plane
+  m.vertices[6].z = 1.0008;        // 0.2 mm off the plane
   c = check_solid(m);
   EXPECT_TRUE(c.valid()) << describe(c);
   EXPECT_FALSE(check_solid(m, {1e-6, 1e-4}).valid());
@@ -195,7 +210,8 @@ TEST(SolidValidation, CommonVolumeTouchingOverlappingIdentical) {
   EXPECT_NEAR(common_volume_by_faces(a.shell, inside.shell).value().volume, 0.125, 1e-9);
   EXPECT_NEAR(common_volume_by_faces(inside.shell, a.shell).value().volume, 0.125, 1e-9);
   // A shell that is not a 2-manifold cannot be corefined: no number rather than a guess.
-  EXPECT_FALSE(common_volume(a.shell, check_solid(merged(box({0, 0, 0}, {1, 1, 1}), box({1, 1, 0}, {2, 2, 1}))).shell));
+  EXPECT_FALSE(common_volume(
+      a.shell, check_solid(merged(box({0, 0, 0}, {1, 1, 1}), box({1, 1, 0}, {2, 2, 1}))).shell));
 }
 
 }  // namespace

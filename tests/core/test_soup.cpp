@@ -50,16 +50,17 @@ TEST(CleanSoup, DropsBrokenAndDuplicateFaces) {
   test::add_vertex(m, {5, 5, 5});  // unused
   const uint32_t c0 = test::add_vertex(m, {0, 0, 2}), c1 = test::add_vertex(m, {1, 0, 2}),
                  c2 = test::add_vertex(m, {2, 0, 2});
-  test::add_face(m, {0, 1, nan}, "WallSurface");           // non-finite vertex
-  test::add_face(m, {c0, c1, c2}, "WallSurface");          // collinear: zero area
-  test::add_face(m, {0, 0, 1}, "WallSurface");             // two distinct points
-  test::add_face(m, {0, 1, 99}, "WallSurface");            // index out of range
-  Polygon dup = m.faces[0];                                 // same ring, rotated and reversed
+  test::add_face(m, {0, 1, nan}, "WallSurface");   // non-finite vertex
+  test::add_face(m, {c0, c1, c2}, "WallSurface");  // collinear: zero area
+  test::add_face(m, {0, 0, 1}, "WallSurface");     // two distinct points
+  test::add_face(m, {0, 1, 99}, "WallSurface");    // index out of range
+  Polygon dup = m.faces[0];                        // same ring, rotated and reversed
   std::reverse(dup.rings[0].begin(), dup.rings[0].end());
   std::rotate(dup.rings[0].begin(), dup.rings[0].begin() + 1, dup.rings[0].end());
   m.faces.push_back(dup);
-  Polygon repeated = m.faces[1];                            // repeated indices, otherwise a new face
-  repeated.rings[0] = {repeated.rings[0][0], repeated.rings[0][0], repeated.rings[0][1], repeated.rings[0][2]};
+  Polygon repeated = m.faces[1];  // repeated indices, otherwise a new face
+  repeated.rings[0] = {repeated.rings[0][0], repeated.rings[0][0], repeated.rings[0][1],
+                       repeated.rings[0][2]};
   m.faces.push_back(repeated);
 
   std::vector<std::string> problems;
@@ -78,7 +79,8 @@ TEST(CleanSoup, DropsBrokenAndDuplicateFaces) {
 
 TEST(CleanSoup, DropsDegenerateHoleKeepsFace) {
   PolygonMesh m;
-  for (Vec3 v : {Vec3{0, 0, 0}, Vec3{4, 0, 0}, Vec3{4, 4, 0}, Vec3{0, 4, 0}, Vec3{1, 1, 0}, Vec3{2, 2, 0}, Vec3{3, 3, 0}})
+  for (Vec3 v : {Vec3{0, 0, 0}, Vec3{4, 0, 0}, Vec3{4, 4, 0}, Vec3{0, 4, 0}, Vec3{1, 1, 0}, Vec3{2, 2, 0},
+                 Vec3{3, 3, 0}})
     test::add_vertex(m, v);
   Polygon f;
   f.rings = {{0, 1, 2, 3}, {4, 5, 6}};  // the hole is collinear
@@ -113,15 +115,16 @@ TEST(Triangulate, PolygonWithHoleAndNonConvex) {
   m.faces.push_back(wall);
   // Non-convex U shape in z = 0.
   const uint32_t b = static_cast<uint32_t>(m.vertices.size());
-  for (Vec3 v : {Vec3{0, 0, 0}, Vec3{6, 0, 0}, Vec3{6, 6, 0}, Vec3{4, 6, 0}, Vec3{4, 2, 0}, Vec3{2, 2, 0}, Vec3{2, 6, 0},
-                 Vec3{0, 6, 0}})
+  for (Vec3 v : {Vec3{0, 0, 0}, Vec3{6, 0, 0}, Vec3{6, 6, 0}, Vec3{4, 6, 0}, Vec3{4, 2, 0}, Vec3{2, 2, 0},
+                 Vec3{2, 6, 0}, Vec3{0, 6, 0}})
     test::add_vertex(m, v);
   test::add_face(m, {b, b + 1, b + 2, b + 3, b + 4, b + 5, b + 6, b + 7}, "GroundSurface");
   const TriangleSoup s = triangulate(m);
   double wall_area = 0, u_area = 0;
   for (size_t t = 0; t < s.triangles.size(); ++t) {
     const auto& tri = s.triangles[t];
-    const double a = 0.5 * norm(cross(s.vertices[tri[1]] - s.vertices[tri[0]], s.vertices[tri[2]] - s.vertices[tri[0]]));
+    const double a =
+        0.5 * norm(cross(s.vertices[tri[1]] - s.vertices[tri[0]], s.vertices[tri[2]] - s.vertices[tri[0]]));
     (s.source_face[t] == 0 ? wall_area : u_area) += a;
   }
   EXPECT_NEAR(wall_area, 96, 1e-9);

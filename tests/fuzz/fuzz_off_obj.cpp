@@ -17,7 +17,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (face.semantic >= static_cast<int32_t>(m.semantic_labels.size())) std::abort();
     }
     for (const auto& face : m.faces) mc::io::bridge_holes(m, face);
-  } catch (const mc::io::ReadError&) {
-  }
+  } catch (const mc::io::ReadError&) {}
   return 0;
 }

@@ -52,8 +52,7 @@ inline void read_extract_write(const std::string& input, const std::string& outp
     }
     writer.close();
     std::remove(output.c_str());
-  } catch (const mc::io::ReadError&) {
-  }
+  } catch (const mc::io::ReadError&) {}
 }
 
 }  // namespace mc::fuzz

@@ -15,8 +15,12 @@ namespace mc::io::test {
 
 namespace fs = std::filesystem;
 
-inline std::string project_data(const std::string& rel) { return std::string(MC_SOURCE_DIR) + "/datasets/" + rel; }
-inline std::string bad_input(const std::string& name) { return std::string(MC_SOURCE_DIR) + "/tests/io/bad/" + name; }
+inline std::string project_data(const std::string& rel) {
+  return std::string(MC_SOURCE_DIR) + "/datasets/" + rel;
+}
+inline std::string bad_input(const std::string& name) {
+  return std::string(MC_SOURCE_DIR) + "/tests/io/bad/" + name;
+}
 // The shared read-only data beside the repository (CI: ../shared).
 inline std::string shared_dir() { return std::string(MC_SOURCE_DIR) + "/../shared/datasets"; }
 inline bool have_shared() { return fs::is_directory(shared_dir() + "/cityjson"); }
@@ -28,13 +32,16 @@ class ScratchDir {
     static int n = 0;
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = fs::path(MC_BINARY_DIR) / "io_test_tmp" /
-            (std::string(info ? info->name() : "x") + "_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+            (std::string(info ? info->name() : "x") + "_" + std::to_string(::getpid()) + "_" +
+             std::to_string(n++));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
   ~ScratchDir() { fs::remove_all(path_); }
   std::string file(const std::string& name) const { return (path_ / name).string(); }
-  size_t entries() const { return static_cast<size_t>(std::distance(fs::directory_iterator(path_), fs::directory_iterator())); }
+  size_t entries() const {
+    return static_cast<size_t>(std::distance(fs::directory_iterator(path_), fs::directory_iterator()));
+  }
 
  private:
   fs::path path_;
@@ -70,11 +77,8 @@ inline std::string open_error(const std::string& path) {
   try {
     CityJsonReader r(path);
     Feature f;
-    while (r.next(f)) {
-    }
-  } catch (const ReadError& e) {
-    return e.what();
-  }
+    while (r.next(f)) {}
+  } catch (const ReadError& e) { return e.what(); }
   return "";
 }
 

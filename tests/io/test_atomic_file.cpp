@@ -18,16 +18,13 @@ namespace {
 
 // Death-test children (threadsafe style: a fresh exec of this binary) re-run SetUp; they must
 // land in their parent's directory, so the parent can check what the child left behind.
-int owner_pid() {
-  return GTEST_FLAG_GET(internal_run_death_test).empty() ? ::getpid() : ::getppid();
-}
+int owner_pid() { return GTEST_FLAG_GET(internal_run_death_test).empty() ? ::getpid() : ::getppid(); }
 
 class AtomicFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("mc_atomic_" + std::to_string(owner_pid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() / ("mc_atomic_" + std::to_string(owner_pid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -87,8 +84,7 @@ TEST_F(AtomicFileTest, ExceptionWhileWritingLeavesNothing) {
     AtomicFile f(target.string());
     f.stream() << "half";
     throw std::runtime_error("job failed");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   EXPECT_FALSE(fs::exists(target));
   EXPECT_TRUE(temps().empty());
 }

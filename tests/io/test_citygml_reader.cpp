@@ -152,7 +152,7 @@ TEST(CityGmlReader, Lod2BuildingsV20BoundarySurfacesAndTypedAttributes) {
     const json& b = f.objects[f.id];
     ASSERT_EQ(b["geometry"].size(), 1u);
     const json& g = b["geometry"][0];
-    EXPECT_EQ(g["type"], "MultiSurface");  // boundary surfaces only, no solid
+    EXPECT_EQ(g["type"], "MultiSurface");       // boundary surfaces only, no solid
     EXPECT_EQ(surfaces(g).size(), 7u) << f.id;  // ground, 4 walls, 2 roof planes
     EXPECT_EQ(semantic_types(g), (std::set<std::string>{"GroundSurface", "WallSurface", "RoofSurface"}));
     EXPECT_EQ(f.vertices.size(), 10u) << f.id;  // a gable house, shared corners pooled
@@ -222,7 +222,8 @@ TEST(CityGmlReader, BerlinV10RealBuildingsWithHoles) {
         ++polygons;
         holes += s.size() - 1;
       }
-    for (const auto& v : f.vertices) {  // the envelope: 390477.99 5819214.18 27.52 - 390703.08 5819552.65 64.22
+    for (const auto& v :
+         f.vertices) {  // the envelope: 390477.99 5819214.18 27.52 - 390703.08 5819552.65 64.22
       EXPECT_GE(v.x, 390477.9);
       EXPECT_LE(v.x, 390703.1);
       EXPECT_GE(v.y, 5819214.1);
@@ -257,8 +258,9 @@ std::string cube_polys(double z0 = 0, const std::string& id_prefix = "p") {
   // A unit cube's 6 faces (outward), closed rings as GML writes them.
   const double z1 = z0 + 1;
   auto P = [&](const std::string& id, const std::string& coords) {
-    return "<g:surfaceMember><g:Polygon g:id=\"" + id_prefix + id + "\"><g:exterior><g:LinearRing><g:posList>" +
-           coords + "</g:posList></g:LinearRing></g:exterior></g:Polygon></g:surfaceMember>";
+    return "<g:surfaceMember><g:Polygon g:id=\"" + id_prefix + id +
+           "\"><g:exterior><g:LinearRing><g:posList>" + coords +
+           "</g:posList></g:LinearRing></g:exterior></g:Polygon></g:surfaceMember>";
   };
   auto z = [](double v) { return std::to_string(v); };
   return P("b", "0 0 " + z(z0) + " 0 1 " + z(z0) + " 1 1 " + z(z0) + " 1 0 " + z(z0) + " 0 0 " + z(z0)) +
@@ -320,7 +322,8 @@ TEST_F(CityGmlSynthetic, InteriorRingsAndGmlCoordinates) {
 }
 
 TEST_F(CityGmlSynthetic, TwoDimensionalAndBrokenCoordinatesLeaveTheBuildingWithoutGeometryAndAReason) {
-  const std::string xml = std::string(kHead2) + R"(
+  const std::string xml =
+      std::string(kHead2) + R"(
 <core:cityObjectMember><b:Building g:id="flat"><b:lod2MultiSurface><g:MultiSurface srsDimension="2">
  <g:surfaceMember><g:Polygon><g:exterior><g:LinearRing><g:posList>0 0 1 0 1 1 0 0</g:posList>
  </g:LinearRing></g:exterior></g:Polygon></g:surfaceMember></g:MultiSurface></b:lod2MultiSurface></b:Building></core:cityObjectMember>
@@ -332,7 +335,8 @@ TEST_F(CityGmlSynthetic, TwoDimensionalAndBrokenCoordinatesLeaveTheBuildingWitho
  </g:LinearRing></g:exterior></g:Polygon></g:surfaceMember></g:MultiSurface></b:lod2MultiSurface></b:Building></core:cityObjectMember>
 <core:cityObjectMember><b:Building g:id="implicit"><b:lod2ImplicitRepresentation/></b:Building></core:cityObjectMember>
 <core:cityObjectMember><b:Building g:id="good"><b:lod1Solid><g:Solid><g:exterior><g:CompositeSurface>)" +
-                          cube_polys() + R"(</g:CompositeSurface></g:exterior></g:Solid></b:lod1Solid></b:Building></core:cityObjectMember>
+      cube_polys() +
+      R"(</g:CompositeSurface></g:exterior></g:Solid></b:lod1Solid></b:Building></core:cityObjectMember>
 </core:CityModel>)";
   const auto r = read_gml(write("bad.gml", xml));
   ASSERT_EQ(r.features.size(), 5u);  // every building is handed out, usable or not
@@ -354,17 +358,21 @@ TEST_F(CityGmlSynthetic, TwoDimensionalAndBrokenCoordinatesLeaveTheBuildingWitho
 
 TEST_F(CityGmlSynthetic, OpeningsAreSemanticSurfacesAndLod4BecomesLod3) {
   auto ms = [](const std::string& lod, const std::string& coords) {
-    return "<b:lod" + lod + "MultiSurface><g:MultiSurface><g:surfaceMember><g:Polygon><g:exterior><g:LinearRing><g:posList>" +
-           coords + "</g:posList></g:LinearRing></g:exterior></g:Polygon></g:surfaceMember></g:MultiSurface></b:lod" + lod +
-           "MultiSurface>";
+    return "<b:lod" + lod +
+           "MultiSurface><g:MultiSurface><g:surfaceMember><g:Polygon><g:exterior><g:LinearRing><g:posList>" +
+           coords +
+           "</g:posList></g:LinearRing></g:exterior></g:Polygon></g:surfaceMember></g:MultiSurface></b:lod" +
+           lod + "MultiSurface>";
   };
   const std::string wall = "0 0 0 4 0 0 4 0 3 0 0 3 0 0 0", window = "1 0 1 2 0 1 2 0 2 1 0 2 1 0 1";
   const std::string xml = std::string(kHead2) + R"(<core:cityObjectMember><b:Building g:id="L3">
-<b:boundedBy><b:WallSurface>)" + ms("3", wall) + R"(<b:opening><b:Window>)" + ms("3", window) +
+<b:boundedBy><b:WallSurface>)" +
+                          ms("3", wall) + R"(<b:opening><b:Window>)" + ms("3", window) +
                           R"(</b:Window></b:opening></b:WallSurface></b:boundedBy>)" + ms("4", wall) +
                           R"(</b:Building></core:cityObjectMember>
 <core:cityObjectMember><b:Building g:id="L4"><b:lod4Solid><g:Solid><g:exterior><g:CompositeSurface>)" +
-                          cube_polys() + R"(</g:CompositeSurface></g:exterior></g:Solid></b:lod4Solid></b:Building>
+                          cube_polys() +
+                          R"(</g:CompositeSurface></g:exterior></g:Solid></b:lod4Solid></b:Building>
 </core:cityObjectMember></core:CityModel>)";
   const auto r = read_gml(write("lod3.gml", xml));
   ASSERT_EQ(r.features.size(), 2u);
@@ -387,8 +395,10 @@ TEST_F(CityGmlSynthetic, CrsFromTheFirstBuildingWithoutEnvelopeAndDisagreementsR
            "\"><g:exterior><g:CompositeSurface>" + cube_polys(z0, id) +
            "</g:CompositeSurface></g:exterior></g:Solid></b:lod2Solid>"
            // A wall beside the solid: not doubled into it, and said so.
-           "<b:boundedBy><b:WallSurface><b:lod2MultiSurface><g:MultiSurface><g:surfaceMember><g:Polygon><g:exterior>"
-           "<g:LinearRing><g:posList>5 5 0 6 5 0 6 5 1 5 5 0</g:posList></g:LinearRing></g:exterior></g:Polygon>"
+           "<b:boundedBy><b:WallSurface><b:lod2MultiSurface><g:MultiSurface><g:surfaceMember><g:Polygon><g:"
+           "exterior>"
+           "<g:LinearRing><g:posList>5 5 0 6 5 0 6 5 1 5 5 "
+           "0</g:posList></g:LinearRing></g:exterior></g:Polygon>"
            "</g:surfaceMember></g:MultiSurface></b:lod2MultiSurface></b:WallSurface></b:boundedBy>"
            "</b:Building></core:cityObjectMember>";
   };
@@ -396,19 +406,22 @@ TEST_F(CityGmlSynthetic, CrsFromTheFirstBuildingWithoutEnvelopeAndDisagreementsR
                           building("b", "EPSG:28992", 0) + "</core:CityModel>";
   const auto r = read_gml(write("crs.gml", xml));
   EXPECT_EQ(r.header.crs, "EPSG:7415");
-  EXPECT_EQ(r.header.root["transform"]["translate"], json({0.0, 0.0, 0.0}));  // first building's corner, floored
+  EXPECT_EQ(r.header.root["transform"]["translate"],
+            json({0.0, 0.0, 0.0}));  // first building's corner, floored
   ASSERT_EQ(r.features.size(), 2u);
   ASSERT_EQ(r.features[0].problems.size(), 1u);
   EXPECT_EQ(r.features[0].problems[0], "a: 1 lod2 surface(s) outside the lod2Solid not carried");
   ASSERT_EQ(r.problems.size(), 1u);
-  EXPECT_NE(r.problems[0].find("1 buildings have an srsName other than the file's (b has srsName \"EPSG:28992\")"),
-            std::string::npos)
+  EXPECT_NE(
+      r.problems[0].find("1 buildings have an srsName other than the file's (b has srsName \"EPSG:28992\")"),
+      std::string::npos)
       << r.problems[0];
 }
 
 TEST_F(CityGmlSynthetic, UnresolvedXlinkIsNotedAndTheRestKept) {
   const std::string xml = std::string(kHead2) + R"(<core:cityObjectMember><b:Building g:id="X">
-<b:lod2MultiSurface><g:MultiSurface>)" + cube_polys() +
+<b:lod2MultiSurface><g:MultiSurface>)" +
+                          cube_polys() +
                           R"(<g:surfaceMember xlink:href="#elsewhere"/></g:MultiSurface></b:lod2MultiSurface>
 </b:Building></core:cityObjectMember></core:CityModel>)";
   const auto r = read_gml(write("xlink.gml", xml));
@@ -512,8 +525,7 @@ std::pair<double, size_t> peak_rss_of_reading(const std::string& path) {
       getrusage(RUSAGE_SELF, &u);
       out[0] = static_cast<double>(u.ru_maxrss) / 1024.0;
       out[1] = static_cast<double>(n);
-    } catch (...) {
-    }
+    } catch (...) {}
     if (write(fds[1], out, sizeof out) != sizeof out) _exit(1);
     _exit(0);
   }
@@ -537,7 +549,8 @@ TEST(CityGmlStreaming, PeakMemoryDoesNotGrowWithTheNumberOfBuildings) {
     ASSERT_EQ(peak[n].second, static_cast<size_t>(n));
   }
   // 10x the buildings (about 120 MB of XML): the same few MB.
-  EXPECT_LT(peak[20000].first, peak[2000].first + 2.0) << peak[2000].first << " MB vs " << peak[20000].first << " MB";
+  EXPECT_LT(peak[20000].first, peak[2000].first + 2.0)
+      << peak[2000].first << " MB vs " << peak[20000].first << " MB";
 }
 
 }  // namespace

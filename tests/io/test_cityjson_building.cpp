@@ -7,7 +7,8 @@
 namespace mc::io::test {
 namespace {
 
-std::map<std::string, BuildingInput> buildings_of(const std::string& path, const std::string& lod = "highest") {
+std::map<std::string, BuildingInput> buildings_of(const std::string& path,
+                                                  const std::string& lod = "highest") {
   const auto w = read_all(path);
   std::map<std::string, BuildingInput> out;
   for (const auto& f : w.features)
@@ -29,8 +30,8 @@ TEST(ExtractBuilding, The3dBagTileHas432BuildingsWithSemantics) {
   ASSERT_EQ(w.features.size(), 432u);
   const auto& extent = w.header.root["metadata"]["geographicalExtent"];
   size_t empty = 0, with_holes = 0, with_degenerate = 0, faces = 0;
-  const std::set<std::string> no_geometry = {"NL.IMBAG.Pand.0503100000032915", "NL.IMBAG.Pand.0503100000033670",
-                                             "NL.IMBAG.Pand.0503100000033683"};
+  const std::set<std::string> no_geometry = {
+      "NL.IMBAG.Pand.0503100000032915", "NL.IMBAG.Pand.0503100000033670", "NL.IMBAG.Pand.0503100000033683"};
   for (const auto& f : w.features) {
     SCOPED_TRACE(f.id);
     ASSERT_TRUE(is_building(f));
@@ -114,7 +115,8 @@ TEST(ExtractBuilding, LodSelectionIsExactOrHighest) {
   EXPECT_TRUE(l12.problems.empty()) << joined(l12.problems);
   const auto none = extract_building(*f, w.header, "2");  // exact: "2" is not "2.2"
   EXPECT_TRUE(none.mesh.empty());
-  EXPECT_EQ(none.problems, (std::vector<std::string>{"6751773: no usable faces at LoD 2 (available: 1.2, 1.3, 2.2)"}));
+  EXPECT_EQ(none.problems,
+            (std::vector<std::string>{"6751773: no usable faces at LoD 2 (available: 1.2, 1.3, 2.2)"}));
 }
 
 TEST(ExtractBuilding, PartsCarryTheSolidsAndTheBuildingItsFootprint) {

@@ -56,8 +56,9 @@ std::vector<std::array<double, 3>> real_vertices(const json& verts, const json& 
       t[i] = root["transform"]["translate"][i].get<double>();
     }
   std::vector<std::array<double, 3>> out;
-  for (const auto& p : verts) out.push_back({p[0].get<double>() * s[0] + t[0], p[1].get<double>() * s[1] + t[1],
-                                             p[2].get<double>() * s[2] + t[2]});
+  for (const auto& p : verts)
+    out.push_back({p[0].get<double>() * s[0] + t[0], p[1].get<double>() * s[1] + t[1],
+                   p[2].get<double>() * s[2] + t[2]});
   return out;
 }
 
@@ -115,8 +116,10 @@ void round_trip(const std::string& in, const std::string& out) {
 // Inputs that are not CityJSON at all, with the exact error they must give.
 const std::map<std::string, std::string> kNotCityJson = {
     {"cityjson-corpus/v2_0/cityjsonfeature_minimal.city.jsonl",
-     ": line 1: not a CityJSONSeq header (a CityJSONSeq starts with one CityJSON object on one line): parse error at "
-     "line 1, column 2: syntax error while parsing object key - unexpected end of input; expected string literal"}};
+     ": line 1: not a CityJSONSeq header (a CityJSONSeq starts with one CityJSON object on one line): parse "
+     "error at "
+     "line 1, column 2: syntax error while parsing object key - unexpected end of input; expected string "
+     "literal"}};
 
 TEST(RoundTrip, EveryFileOfTheSharedCorpus) {
   if (!have_shared()) GTEST_SKIP() << "no " << shared_dir() << " (CI has it at ../shared)";
@@ -133,7 +136,8 @@ TEST(RoundTrip, EveryFileOfTheSharedCorpus) {
   for (const auto& e : fs::recursive_directory_iterator(base)) {
     const std::string rel = fs::relative(e.path(), base).string();
     const std::string ext = e.path().extension().string();
-    if (!e.is_regular_file() || rel.rfind("schemas/", 0) == 0 || (ext != ".json" && ext != ".jsonl")) continue;
+    if (!e.is_regular_file() || rel.rfind("schemas/", 0) == 0 || (ext != ".json" && ext != ".jsonl"))
+      continue;
     seen.insert(rel);
     SCOPED_TRACE(rel);
     const std::string in = e.path().string();
@@ -172,9 +176,10 @@ TEST(RoundTrip, DocumentToSequenceMatchesTheSequenceTwin) {
 }
 
 TEST(RoundTrip, ProjectDatasetsRoundTrip) {
-  for (const char* rel : {"3dbag/3dbag_b2.city.json", "3dbag/3dbag_b2.city.jsonl", "3dbag/delft_subset.city.jsonl",
-                          "edge/dummy_template_void.city.json", "edge/hollow_solid.city.json",
-                          "edge/msol_v10.city.json", "edge/multi_lod.city.json", "edge/DH_01_subs.v20.city.json"}) {
+  for (const char* rel :
+       {"3dbag/3dbag_b2.city.json", "3dbag/3dbag_b2.city.jsonl", "3dbag/delft_subset.city.jsonl",
+        "edge/dummy_template_void.city.json", "edge/hollow_solid.city.json", "edge/msol_v10.city.json",
+        "edge/multi_lod.city.json", "edge/DH_01_subs.v20.city.json"}) {
     SCOPED_TRACE(rel);
     ScratchDir dir;
     const std::string in = project_data(rel), out = dir.file(output_name(in));

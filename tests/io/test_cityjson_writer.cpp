@@ -19,10 +19,12 @@ Header header_2_0() {
 Feature triangle(const std::string& id, double shift = 0) {
   Feature f;
   f.id = id;
-  f.objects = {{id, {{"type", "Building"},
-                     {"attributes", {{"h", 3}}},
-                     {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "2"},
-                                                {"boundaries", json::parse("[[[0,1,2]]]")}}})}}}};
+  f.objects = {{id,
+                {{"type", "Building"},
+                 {"attributes", {{"h", 3}}},
+                 {"geometry", json::array({{{"type", "MultiSurface"},
+                                            {"lod", "2"},
+                                            {"boundaries", json::parse("[[[0,1,2]]]")}}})}}}};
   f.vertices = {{100 + shift, 200, 0}, {101.234, 200, 0}, {100, 201.006, 5.5}};
   return f;
 }
@@ -50,8 +52,7 @@ TEST(CityJsonWriter, FailedRewriteKeepsThePreviousOutput) {
     CityJsonWriter w(out, header_2_0());
     w.write(triangle("new"));
     throw std::runtime_error("job failed");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   const auto r = read_all(out);
   ASSERT_EQ(r.features.size(), 1u);
   EXPECT_EQ(r.features[0].id, "old");
@@ -114,7 +115,8 @@ TEST(CityJsonWriter, SequenceKeepsFeatureMembersDocumentCountsThem) {
 }
 
 TEST(CityJsonWriter, MissingDirectoryIsWriteError) {
-  EXPECT_THROW(CityJsonWriter(std::string(MC_BINARY_DIR) + "/no/such/dir/x.city.json", header_2_0()), WriteError);
+  EXPECT_THROW(CityJsonWriter(std::string(MC_BINARY_DIR) + "/no/such/dir/x.city.json", header_2_0()),
+               WriteError);
 }
 
 }  // namespace

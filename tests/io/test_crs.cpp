@@ -34,8 +34,8 @@ std::pair<double, double> rd_to_wgs84_approx(double x, double y) {
   const T K[] = {{0, 1, 3235.65389}, {2, 0, -32.58297}, {0, 2, -0.24750}, {2, 1, -0.84978},
                  {0, 3, -0.06550},   {2, 2, -0.01709},  {1, 0, -0.00738}, {4, 0, 0.00530},
                  {2, 3, -0.00039},   {4, 1, 0.00033},   {1, 1, -0.00012}};
-  const T L[] = {{1, 0, 5260.52916}, {1, 1, 105.94684}, {1, 2, 2.45656}, {3, 0, -0.81885},
-                 {1, 3, 0.05594},    {3, 1, -0.05607},  {0, 1, 0.01199}, {3, 2, -0.00256},
+  const T L[] = {{1, 0, 5260.52916}, {1, 1, 105.94684}, {1, 2, 2.45656},  {3, 0, -0.81885},
+                 {1, 3, 0.05594},    {3, 1, -0.05607},  {0, 1, 0.01199},  {3, 2, -0.00256},
                  {1, 4, 0.00128},    {0, 2, 0.00022},   {2, 0, -0.00022}, {5, 0, 0.00026}};
   double lat = 0, lon = 0;
   for (const T& t : K) lat += t.c * std::pow(dx, t.p) * std::pow(dy, t.q);
@@ -62,12 +62,14 @@ TEST(Crs, EmptyAndUnknownAreInvalid) {
 }
 
 TEST(Crs, AmersfoortInRdNew) {
-  for (const char* id : {"EPSG:28992", "urn:ogc:def:crs:EPSG::28992", "https://www.opengis.net/def/crs/EPSG/0/28992"}) {
+  for (const char* id :
+       {"EPSG:28992", "urn:ogc:def:crs:EPSG::28992", "https://www.opengis.net/def/crs/EPSG/0/28992"}) {
     const CrsTransformer t(id);
     ASSERT_TRUE(t.valid()) << id << ": " << t.error();
     const auto ll = t.to_lonlat(155000, 463000, 0);
     ASSERT_TRUE(ll) << id;
-    EXPECT_LT(metres(ll->first, ll->second, 5.38720621, 52.15517440), 2.0) << id << " " << ll->first << " " << ll->second;
+    EXPECT_LT(metres(ll->first, ll->second, 5.38720621, 52.15517440), 2.0)
+        << id << " " << ll->first << " " << ll->second;
   }
 }
 
@@ -81,7 +83,8 @@ TEST(Crs, CompoundRdNapGivesTheSameLonLat) {
 }
 
 TEST(Crs, DelftPointFrom3dBag) {
-  const std::string path = MC_SOURCE_DIR "/../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json";
+  const std::string path =
+      MC_SOURCE_DIR "/../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json";
   std::ifstream in(path);
   ASSERT_TRUE(in) << path;
   const nlohmann::json j = nlohmann::json::parse(in);

@@ -86,7 +86,8 @@ TEST(Csv, ByteIdenticalAcrossRuns) {
   auto render = [] {
     std::ostringstream out;
     CsvWriter w(out);
-    for (int i = 0; i < 100; ++i) w.field("b" + std::to_string(i)).field(std::sqrt(i) * 1e3).field(-i / 7.0).end_row();
+    for (int i = 0; i < 100; ++i)
+      w.field("b" + std::to_string(i)).field(std::sqrt(i) * 1e3).field(-i / 7.0).end_row();
     return out.str();
   };
   EXPECT_EQ(render(), render());

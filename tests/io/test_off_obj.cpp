@@ -50,16 +50,16 @@ TEST(Off, BadFilesGivePreciseErrors) {
   auto error = [](const std::string& path) -> std::string {
     try {
       read_off(path);
-    } catch (const ReadError& e) {
-      return e.what();
-    }
+    } catch (const ReadError& e) { return e.what(); }
     return "";
   };
-  const std::string a = bad_input("index_out_of_range.off"), b = bad_input("truncated.off"), c = bad_input("nan.off");
+  const std::string a = bad_input("index_out_of_range.off"), b = bad_input("truncated.off"),
+                    c = bad_input("nan.off");
   EXPECT_EQ(error(a), a + ":7: vertex index 9 out of range (4 vertices)");
   EXPECT_EQ(error(b), b + ": file ends after 3 of 4 vertices");
   EXPECT_EQ(error(c), c + ":4: non-finite coordinate \"nan\"");
-  EXPECT_EQ(error(bad_input("bad_objects.city.json")), bad_input("bad_objects.city.json") + ":1: not an OFF file (header \"{\")");
+  EXPECT_EQ(error(bad_input("bad_objects.city.json")),
+            bad_input("bad_objects.city.json") + ":1: not an OFF file (header \"{\")");
 }
 
 mc::PolygonMesh square_with_hole() {
@@ -105,7 +105,8 @@ TEST(Obj, WriteReadRoundTripKeepsSemantics) {
 TEST(Obj, SlashesAndNegativeIndices) {
   ScratchDir dir;
   const std::string p = dir.file("n.obj");
-  std::ofstream(p) << "o x\nv 0 0 0\nv 1 0 0\nvt 0 0\nvn 0 0 1\nv 0 1 0 1.0\nf 1/1/1 2//1 3\nf -3 -2 -1\nf 1 2 4\n";
+  std::ofstream(p)
+      << "o x\nv 0 0 0\nv 1 0 0\nvt 0 0\nvn 0 0 1\nv 0 1 0 1.0\nf 1/1/1 2//1 3\nf -3 -2 -1\nf 1 2 4\n";
   try {
     read_obj(p);
     FAIL() << "expected ReadError";

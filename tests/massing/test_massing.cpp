@@ -12,10 +12,10 @@
 namespace mc::pipeline {
 namespace {
 
-using nlohmann::json;
 using mc::test::box;
 using mc::test::gable_house;
 using mc::test::prism;
+using nlohmann::json;
 
 // Several closed shells as one building (the oracle takes their union, docs/algorithm.md §6.2).
 PolygonMesh join(const std::vector<PolygonMesh>& shells) {
@@ -36,7 +36,9 @@ PolygonMesh join(const std::vector<PolygonMesh>& shells) {
 mc::io::Header header() {
   mc::io::Header h;
   h.version = "2.0";
-  h.root = {{"type", "CityJSON"}, {"version", "2.0"}, {"transform", {{"scale", {0.001, 0.001, 0.001}}, {"translate", {0, 0, 0}}}}};
+  h.root = {{"type", "CityJSON"},
+            {"version", "2.0"},
+            {"transform", {{"scale", {0.001, 0.001, 0.001}}, {"translate", {0, 0, 0}}}}};
   return h;
 }
 
@@ -51,7 +53,8 @@ mc::io::Feature feature(const PolygonMesh& m) {
     json surface = json::array();
     for (const auto& r : p.rings) surface.push_back(r);
     boundaries.push_back(surface);
-    const std::string name = p.semantic >= 0 ? m.semantic_labels[static_cast<size_t>(p.semantic)] : "WallSurface";
+    const std::string name =
+        p.semantic >= 0 ? m.semantic_labels[static_cast<size_t>(p.semantic)] : "WallSurface";
     int k = -1;
     for (size_t i = 0; i < surfaces.size(); ++i)
       if (surfaces[i]["type"] == name) k = static_cast<int>(i);
@@ -61,12 +64,13 @@ mc::io::Feature feature(const PolygonMesh& m) {
     }
     values.push_back(k);
   }
-  f.objects[f.id] = {{"type", "Building"},
-                     {"attributes", json::object()},
-                     {"geometry", json::array({{{"type", "MultiSurface"},
-                                                {"lod", "2.2"},
-                                                {"boundaries", boundaries},
-                                                {"semantics", {{"surfaces", surfaces}, {"values", values}}}}})}};
+  f.objects[f.id] = {
+      {"type", "Building"},
+      {"attributes", json::object()},
+      {"geometry", json::array({{{"type", "MultiSurface"},
+                                 {"lod", "2.2"},
+                                 {"boundaries", boundaries},
+                                 {"semantics", {{"surfaces", surfaces}, {"values", values}}}}})}};
   return f;
 }
 
@@ -92,7 +96,8 @@ std::string describe(const Result& r) {
   if (r.level)
     for (const auto& p : r.level->parts) {
       s += " [" + p.role + " z " + std::to_string(p.z_min) + ".." + std::to_string(p.z_max) + " V " +
-           std::to_string(p.volume) + " A " + std::to_string(p.footprint_area) + (p.grounded ? " g" : "") + " c:";
+           std::to_string(p.volume) + " A " + std::to_string(p.footprint_area) + (p.grounded ? " g" : "") +
+           " c:";
       for (const auto& c : p.contacts) s += " " + std::to_string(c.other) + c.kind + std::to_string(c.above);
       s += "]";
     }
@@ -166,8 +171,8 @@ TEST(Massing, PodiumWithTower) {
 }
 
 TEST(Massing, SteppedBlockHasFourTiersAndThreeSetbacks) {
-  const Result r = run(join({box({0, 0, 0}, {30, 30, 6}), box({3, 3, 6}, {27, 27, 12}), box({6, 6, 12}, {24, 24, 18}),
-                             box({9, 9, 18}, {21, 21, 24})}));
+  const Result r = run(join({box({0, 0, 0}, {30, 30, 6}), box({3, 3, 6}, {27, 27, 12}),
+                             box({6, 6, 12}, {24, 24, 18}), box({9, 9, 18}, {21, 21, 24})}));
   ASSERT_EQ(r.b.status, "ok") << r.b.reason;
   EXPECT_EQ(r.b.massing.features.tiers, 4) << describe(r);
   EXPECT_EQ(r.b.massing.features.setbacks, 3) << describe(r);
@@ -175,8 +180,8 @@ TEST(Massing, SteppedBlockHasFourTiersAndThreeSetbacks) {
 }
 
 TEST(Massing, PerimeterBlockAroundACourtyard) {
-  const Result r = run(join({box({0, 0, 0}, {40, 12, 10}), box({0, 28, 0}, {40, 40, 10}), box({0, 12, 0}, {12, 28, 10}),
-                             box({28, 12, 0}, {40, 28, 10})}));
+  const Result r = run(join({box({0, 0, 0}, {40, 12, 10}), box({0, 28, 0}, {40, 40, 10}),
+                             box({0, 12, 0}, {12, 28, 10}), box({28, 12, 0}, {40, 28, 10})}));
   ASSERT_EQ(r.b.status, "ok") << r.b.reason;
   EXPECT_EQ(r.b.massing.features.courtyards, 1) << describe(r);
   EXPECT_GE(r.b.massing.features.cycles, 1) << describe(r);
@@ -189,7 +194,7 @@ TEST(Massing, GableHouseWithTwoDormers) {
   // Ridge along x at y = 5, z = 8; the south slope z = 4 + 0.8 y. Dormers: flat roof at 7.4,
   // front wall at y = 1.5 (slope 5.2), boxes reaching down into the house.
   Result r = run(join({gable_house(14, 10, 4, 8), box({2, 1.5, 4.5}, {5.5, 4.25, 7.4}),
-                             box({8.5, 1.5, 4.5}, {12, 4.25, 7.4})}));
+                       box({8.5, 1.5, 4.5}, {12, 4.25, 7.4})}));
   ASSERT_EQ(r.b.status, "ok") << r.b.reason;
   EXPECT_EQ(r.b.massing.features.rooftop_units, 2) << describe(r);
   EXPECT_EQ(r.roles["rooftop"], 2) << describe(r);

@@ -35,8 +35,8 @@ inline std::string data_file(const std::string& rel) {
   return {};
 }
 
-#define MC_REQUIRE_DATA(var, rel)                                          \
-  const std::string var = ::mc::test::data_file(rel);                     \
+#define MC_REQUIRE_DATA(var, rel)                     \
+  const std::string var = ::mc::test::data_file(rel); \
   if (var.empty()) GTEST_SKIP() << "test data " << rel << " not found";
 
 // A fresh empty directory under the build tree, removed by the destructor.
@@ -89,7 +89,8 @@ inline json load_city(const std::string& path) {
       if (obj.contains("geometry"))
         for (auto& g : obj["geometry"]) {
           std::function<void(json&)> shift = [&](json& n) {
-            if (n.is_array()) for (auto& c : n) shift(c);
+            if (n.is_array())
+              for (auto& c : n) shift(c);
             else if (n.is_number_integer()) n = n.get<int64_t>() + base;
           };
           if (g.contains("boundaries")) shift(g["boundaries"]);
@@ -106,7 +107,8 @@ inline std::vector<std::string> level_files(const std::string& main_output) {
   std::string base = main_output, ext;
   for (const char* e : {".city.jsonl", ".city.json", ".jsonl", ".json"}) {
     const std::string x = e;
-    if (main_output.size() > x.size() && main_output.compare(main_output.size() - x.size(), x.size(), x) == 0) {
+    if (main_output.size() > x.size() &&
+        main_output.compare(main_output.size() - x.size(), x.size(), x) == 0) {
       ext = x;
       base = main_output.substr(0, main_output.size() - x.size());
       break;
@@ -118,7 +120,8 @@ inline std::vector<std::string> level_files(const std::string& main_output) {
   if (!fs::exists(dir)) return out;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
-    if (name.rfind(prefix, 0) == 0 && name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0 &&
+    if (name.rfind(prefix, 0) == 0 && name.size() > ext.size() &&
+        name.compare(name.size() - ext.size(), ext.size(), ext) == 0 &&
         name.find('.', prefix.size()) != std::string::npos)
       out.push_back(e.path().string());
   }
@@ -136,11 +139,13 @@ inline json load_outputs(const std::string& main_output) {
     const int64_t base = static_cast<int64_t>(doc["vertices"].size());
     for (const auto& v : level["vertices"]) doc["vertices"].push_back(v);
     for (auto it = level["CityObjects"].begin(); it != level["CityObjects"].end(); ++it) {
-      if (!it->contains("attributes") || !(*it)["attributes"].contains("morphcut_level") || (*it)["type"] != "BuildingPart")
+      if (!it->contains("attributes") || !(*it)["attributes"].contains("morphcut_level") ||
+          (*it)["type"] != "BuildingPart")
         continue;
       json obj = it.value();
       std::function<void(json&)> shift = [&](json& n) {
-        if (n.is_array()) for (auto& c : n) shift(c);
+        if (n.is_array())
+          for (auto& c : n) shift(c);
         else if (n.is_number_integer()) n = n.get<int64_t>() + base;
       };
       for (auto& g : obj["geometry"]) shift(g["boundaries"]);
@@ -187,7 +192,8 @@ inline std::string solid_defect(const json& geometry, const json& vertices) {
 // containing this text are printed instead (an input with a documented, still open core defect;
 // every other check keeps failing the test).
 // A main output is checked with its level files (each file on its own: every file is a city).
-inline void expect_valid_output(const std::string& path, size_t min_parts = 1, const std::string& known_defect = "") {
+inline void expect_valid_output(const std::string& path, size_t min_parts = 1,
+                                const std::string& known_defect = "") {
   std::string errors, known;
   size_t parts = 0;
   std::vector<std::string> files{path};
@@ -195,11 +201,13 @@ inline void expect_valid_output(const std::string& path, size_t min_parts = 1, c
   for (const auto& file : files) {
     const auto s = mc::pipeline::validate_city(file, {}, [&](const mc::pipeline::ObjectReport& r) {
       for (const auto& e : r.errors) {
-        const std::string line = r.id + ": " + std::to_string(e.code) + " " + e.name + ": " + e.message + "\n";
+        const std::string line =
+            r.id + ": " + std::to_string(e.code) + " " + e.name + ": " + e.message + "\n";
         (!known_defect.empty() && line.find(known_defect) != std::string::npos ? known : errors) += line;
       }
     });
-    EXPECT_TRUE(s.file_problems.empty()) << file << ": " << (s.file_problems.empty() ? "" : s.file_problems.front());
+    EXPECT_TRUE(s.file_problems.empty())
+        << file << ": " << (s.file_problems.empty() ? "" : s.file_problems.front());
     parts += s.counts.parts;
   }
   EXPECT_EQ(errors, "") << path;
@@ -236,8 +244,8 @@ json append_cube_shell(json& vertices, T x0, T size) {
     vertices.push_back({x0 + size * T((k == 1 || k == 2 || k == 5 || k == 6) ? 1 : 0),
                         size * T((k == 2 || k == 3 || k == 6 || k == 7) ? 1 : 0), size * T(k >= 4)});
   json shell = json::array();
-  for (const auto& f : std::vector<std::vector<int>>{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
+  for (const auto& f : std::vector<std::vector<int>>{
+           {0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
     json ring = json::array();
     for (int k : f) ring.push_back(b + k);
     shell.push_back(json::array({ring}));
@@ -255,7 +263,9 @@ inline std::string ajv_path() {
 }
 
 // The official CityJSON 2.0 schemas in ../shared.
-inline std::string schema_dir() { return std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/schemas/2.0"; }
+inline std::string schema_dir() {
+  return std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/schemas/2.0";
+}
 
 // CSV rows split into fields (RFC 4180 quoting; CRLF or LF line ends).
 inline std::vector<std::vector<std::string>> parse_csv(const std::string& text) {

@@ -6,8 +6,9 @@
 namespace mc::test {
 namespace {
 
-#define MC_REQUIRE_CLI() \
-  ASSERT_TRUE(fs::exists(cli_path())) << cli_path() << " missing: build the morphcut_city target before these tests"
+#define MC_REQUIRE_CLI()              \
+  ASSERT_TRUE(fs::exists(cli_path())) \
+      << cli_path() << " missing: build the morphcut_city target before these tests"
 
 std::string bad_file(const std::string& name) { return std::string(MC_SOURCE_DIR) + "/tests/io/bad/" + name; }
 
@@ -55,7 +56,8 @@ void check_buildings(const CliRun& r, const std::string& input, const std::vecto
     if (*e.problem) {
       bool found = false;
       for (const auto& p : b.value("problems", json::array())) found |= p.get<std::string>() == e.problem;
-      EXPECT_TRUE(found) << "problem not reported: " << e.problem << "\nreported: " << b.value("problems", json());
+      EXPECT_TRUE(found) << "problem not reported: " << e.problem
+                         << "\nreported: " << b.value("problems", json());
     }
     const json& attrs = r.output["CityObjects"][e.id]["attributes"];
     EXPECT_EQ(attrs["morphcut_status"].get<std::string>(), e.status);
@@ -92,19 +94,24 @@ TEST(BadInputs, EachBrokenBuildingGetsItsStatusAndTheRestIsProcessed) {
        {"inverted_shell", "ok", "", ""},
        {"duplicate_vertices", "ok", "", "16 duplicate vertices merged"},
        {"zero_area_faces", "ok", "",
-        "zero_area_faces: geometry #0 (MultiSurface, LoD 2.2) surface 7: outer ring has fewer than 3 distinct points "
+        "zero_area_faces: geometry #0 (MultiSurface, LoD 2.2) surface 7: outer ring has fewer than 3 "
+        "distinct points "
         "(degenerate); face skipped"},
        {"nested_multisolid", "skipped",
-        "no surface geometry; nested_multisolid: geometry #0 (MultiSolid, LoD 2.2) solid 0 shell 0 surface 0: outer "
+        "no surface geometry; nested_multisolid: geometry #0 (MultiSolid, LoD 2.2) solid 0 shell 0 surface "
+        "0: outer "
         "ring refers to a vertex that could not be read ([0,3,2,1]); face skipped",
         "nested_multisolid: no usable faces at LoD 2.2"},
        {"index_out_of_range", "skipped",
-        "no surface geometry; index_out_of_range: geometry #0: vertex index 99999 out of range (108 vertices)",
+        "no surface geometry; index_out_of_range: geometry #0: vertex index 99999 out of range (108 "
+        "vertices)",
         "index_out_of_range: geometry #0: vertex index 99998 out of range (108 vertices)"},
        {"non_finite_vertex", "skipped",
-        "no surface geometry; non_finite_vertex: geometry #0: uses a vertex with non-finite coordinates (NaN or inf)",
+        "no surface geometry; non_finite_vertex: geometry #0: uses a vertex with non-finite coordinates (NaN "
+        "or inf)",
         ""},
-       {"wrong_types", "skipped", "no surface geometry; wrong_types: geometry #0: \"abc\" is not a vertex index",
+       {"wrong_types", "skipped",
+        "no surface geometry; wrong_types: geometry #0: \"abc\" is not a vertex index",
         "wrong_types: geometry #0 (Solid, LoD 2.2): malformed boundaries (expected an array); skipped"},
        {"flat", "failed", "no interior: the oracle found no inside cell", ""},
        {"no_geometry", "skipped", "no surface geometry; no_geometry: building has no surface geometry", ""},
@@ -119,40 +126,46 @@ TEST(BadInputs, HugeCoordinatesWithoutTransform) {
   MC_REQUIRE_CLI();
   TempDir dir("bad_huge_coords");
   json objects = json::object(), vertices = json::array();
-  const std::vector<std::pair<std::string, std::array<double, 2>>> at = {
-      {"near", {85000.5, 446000.25}}, {"far_1e9", {1e9, 1e9}}, {"far_1e15", {1e15, -1e15}}, {"far_1e300", {1e300, 0}}};
+  const std::vector<std::pair<std::string, std::array<double, 2>>> at = {{"near", {85000.5, 446000.25}},
+                                                                         {"far_1e9", {1e9, 1e9}},
+                                                                         {"far_1e15", {1e15, -1e15}},
+                                                                         {"far_1e300", {1e300, 0}}};
   for (const auto& [id, xy] : at) {
     const size_t b = vertices.size();
     for (int k = 0; k < 8; ++k)
       vertices.push_back({xy[0] + 10.0 * ((k == 1 || k == 2 || k == 5 || k == 6) ? 1 : 0),
                           xy[1] + 10.0 * ((k == 2 || k == 3 || k == 6 || k == 7) ? 1 : 0), 10.0 * (k >= 4)});
     json shell = json::array();
-    for (const auto& f : std::vector<std::vector<int>>{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                       {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
+    for (const auto& f : std::vector<std::vector<int>>{
+             {0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
       json ring = json::array();
       for (int v : f) ring.push_back(b + v);
       shell.push_back(json::array({ring}));
     }
-    objects[id] = {{"type", "Building"},
-                   {"geometry", json::array({{{"type", "Solid"}, {"lod", 2}, {"boundaries", json::array({shell})}}})}};
+    objects[id] = {
+        {"type", "Building"},
+        {"geometry", json::array({{{"type", "Solid"}, {"lod", 2}, {"boundaries", json::array({shell})}}})}};
   }
   const std::string input = dir / "huge.city.json";
-  std::ofstream(input) << json({{"type", "CityJSON"}, {"version", "1.0"}, {"CityObjects", objects}, {"vertices", vertices}})
-                              .dump();
+  std::ofstream(input)
+      << json({{"type", "CityJSON"}, {"version", "1.0"}, {"CityObjects", objects}, {"vertices", vertices}})
+             .dump();
   const CliRun r = run_cli(dir, input, kQuick);
   EXPECT_EQ(r.process.exit_code, 1) << r.process.output;
   // nlohmann's objects are sorted by key, so is the file.
-  check_buildings(r, input,
-                  {{"far_1e15", "ok", "", ""},
-                   {"far_1e300", "failed", "no interior: the oracle found no inside cell",
-                    "far_1e300: geometry #0 (Solid, LoD 2) shell 0 surface 0: outer ring has fewer than 3 distinct "
-                    "points (degenerate); face skipped"},
-                   {"far_1e9", "ok", "", ""},
-                   {"near", "ok", "", ""}});
+  check_buildings(
+      r, input,
+      {{"far_1e15", "ok", "", ""},
+       {"far_1e300", "failed", "no interior: the oracle found no inside cell",
+        "far_1e300: geometry #0 (Solid, LoD 2) shell 0 surface 0: outer ring has fewer than 3 distinct "
+        "points (degenerate); face skipped"},
+       {"far_1e9", "ok", "", ""},
+       {"near", "ok", "", ""}});
   // The parts of the far buildings are where the input is (no transform: written as floats).
   const json& v = r.output["vertices"];
   bool near_1e15 = false;
-  for (const auto& p : v) near_1e15 |= std::abs(p[0].get<double>() - 1e15) < 20 && std::abs(p[1].get<double>() + 1e15) < 20;
+  for (const auto& p : v)
+    near_1e15 |= std::abs(p[0].get<double>() - 1e15) < 20 && std::abs(p[1].get<double>() + 1e15) < 20;
   EXPECT_TRUE(near_1e15);
 }
 
@@ -174,8 +187,8 @@ TEST(BadInputs, HugeBuildingIsSkippedAsTooLarge) {
   const int base = static_cast<int>(v.size());
   for (auto [x, y] : std::vector<std::pair<int, int>>{{0, 0}, {n, 0}, {n, n}, {0, n}}) v.push_back({x, y, 0});
   faces.push_back(json::array({json::array({base, base + 3, base + 2, base + 1})}));
-  const std::vector<std::vector<int>> sides = {{idx(0, 0), idx(n, 0)}, {idx(n, 0), idx(n, n)}, {idx(n, n), idx(0, n)},
-                                               {idx(0, n), idx(0, 0)}};
+  const std::vector<std::vector<int>> sides = {
+      {idx(0, 0), idx(n, 0)}, {idx(n, 0), idx(n, n)}, {idx(n, n), idx(0, n)}, {idx(0, n), idx(0, 0)}};
   for (int k = 0; k < 4; ++k) {  // each wall: two floor corners and the roof edge above them
     json ring = json::array({base + k, base + (k + 1) % 4});
     const int a = sides[k][0], b = sides[k][1], step = (b - a) / n;
@@ -186,11 +199,12 @@ TEST(BadInputs, HugeBuildingIsSkippedAsTooLarge) {
     const json shell = mc::test::append_cube_shell(v, x0, 1000);
     return json::array({{{"type", "Solid"}, {"lod", "2.2"}, {"boundaries", json::array({shell})}}});
   };
-  json objects = {{"before", {{"type", "Building"}, {"geometry", cube(-5000)}}},
-                  {"huge_mesh",
-                   {{"type", "Building"},
-                    {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "2.2"}, {"boundaries", faces}}})}}},
-                  {"after", {{"type", "Building"}, {"geometry", cube(50000)}}}};
+  json objects = {
+      {"before", {{"type", "Building"}, {"geometry", cube(-5000)}}},
+      {"huge_mesh",
+       {{"type", "Building"},
+        {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "2.2"}, {"boundaries", faces}}})}}},
+      {"after", {{"type", "Building"}, {"geometry", cube(50000)}}}};
   const std::string input = dir / "big.city.json";
   std::ofstream(input) << json({{"type", "CityJSON"},
                                 {"version", "2.0"},
@@ -225,13 +239,16 @@ TEST(BadInputs, BrokenSequenceLinesAreSkippedAndReported) {
   check_buildings(
       r, "",
       {{"novertices", "skipped",
-        "no surface geometry; novertices: feature line 2 has no \"vertices\" array; its geometry cannot be read", ""},
-       {"vertices_wrong_type", "skipped",
-        "no surface geometry; vertices_wrong_type: feature line 3 has no \"vertices\" array; its geometry cannot be "
+        "no surface geometry; novertices: feature line 2 has no \"vertices\" array; its geometry cannot be "
         "read",
         ""},
-       {"noid", "skipped", "no surface geometry; noid: feature line 4 has no valid \"id\"; using this top-level object",
+       {"vertices_wrong_type", "skipped",
+        "no surface geometry; vertices_wrong_type: feature line 3 has no \"vertices\" array; its geometry "
+        "cannot be "
+        "read",
         ""},
+       {"noid", "skipped",
+        "no surface geometry; noid: feature line 4 has no valid \"id\"; using this top-level object", ""},
        {"other", "skipped",
         "no surface geometry; other: feature line 5 has no valid \"id\"; using this top-level object", ""},
        {"good", "failed", "no interior: the oracle found no inside cell", ""}});
@@ -240,13 +257,15 @@ TEST(BadInputs, BrokenSequenceLinesAreSkippedAndReported) {
 // A file that cannot be read as a whole: exit 2, the reason on stderr, and no output at all.
 TEST(BadInputs, UnreadableFilesExitTwoAndWriteNothing) {
   MC_REQUIRE_CLI();
-  for (const char* name : {"empty.city.json", "garbage.city.json", "truncated.city.json", "wrong_version.city.json",
-                           "missing_vertices.city.json", "vertices_object.city.json", "version_number.city.json",
-                           "nan_literal.city.json", "invalid_utf8.city.json", "garbage.city.jsonl",
-                           "truncated.city.jsonl", "empty.city.jsonl"}) {
+  for (const char* name :
+       {"empty.city.json", "garbage.city.json", "truncated.city.json", "wrong_version.city.json",
+        "missing_vertices.city.json", "vertices_object.city.json", "version_number.city.json",
+        "nan_literal.city.json", "invalid_utf8.city.json", "garbage.city.jsonl", "truncated.city.jsonl",
+        "empty.city.jsonl"}) {
     SCOPED_TRACE(name);
     TempDir dir("bad_fatal");
-    const ProcessResult r = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + bad_file(name));
+    const ProcessResult r =
+        run_command("cd " + dir.path.string() + " && " + cli_path() + " " + bad_file(name));
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find(bad_file(name) + ": "), std::string::npos) << r.output;
     EXPECT_TRUE(fs::is_empty(dir.path));

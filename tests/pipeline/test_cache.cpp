@@ -20,8 +20,8 @@ struct CachedRun {
   std::string output, report, summary;
 };
 
-CachedRun run_with(const std::string& input, const std::string& dir, const std::string& tag, const std::string& cache,
-             Params p = mc::test::default_config().params) {
+CachedRun run_with(const std::string& input, const std::string& dir, const std::string& tag,
+                   const std::string& cache, Params p = mc::test::default_config().params) {
   const bool seq = input.size() > 6 && input.substr(input.size() - 6) == ".jsonl";
   CachedRun r;
   r.output = dir + "/" + tag + (seq ? ".city.jsonl" : ".city.json");
@@ -127,7 +127,8 @@ TEST_F(CacheTest, AChangedBuildingMissesAndTheOthersHit) {
   }
   const std::string changed = *dir_ / "changed.city.jsonl";
   write(changed, text);
-  const std::string cache = *dir_ / "cache_changed";  // a copy: the suite's cache stays as the cold run left it
+  const std::string cache =
+      *dir_ / "cache_changed";  // a copy: the suite's cache stays as the cold run left it
   fs::copy(cache_, cache, fs::copy_options::recursive);
   const CachedRun mixed = run_with(changed, dir_->path.string(), "mixed", cache);
   EXPECT_EQ(mixed.result.cache.misses, 1u + cold_.result.cache.not_stored);

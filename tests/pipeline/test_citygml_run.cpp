@@ -52,8 +52,8 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
     const auto expected = input_buildings(input);
     ASSERT_FALSE(expected.empty());
     const std::string out = dir / (name + ".city.json"), report = dir / (name + ".report.json");
-    const ProcessResult run = run_command(cli_path() + " '" + input + "' -q --threads 2 -o '" + out + "' --report '" +
-                                          report + "' --no-summary");
+    const ProcessResult run = run_command(cli_path() + " '" + input + "' -q --threads 2 -o '" + out +
+                                          "' --report '" + report + "' --no-summary");
     ASSERT_TRUE(run.exit_code == 0 || run.exit_code == 1) << run.output;  // 1: some building partial/failed
 
     const json city = load_outputs(out);
@@ -95,7 +95,8 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
     size_t invalid_parts = 0;
     const auto v = mc::pipeline::validate_city(out, {}, [&](const mc::pipeline::ObjectReport& o) {
       const bool ours = o.id.find("-mc") != std::string::npos;
-      if (!ours) EXPECT_TRUE(o.valid()) << o.id << ": " << o.errors.front().name << ": " << o.errors.front().message;
+      if (!ours)
+        EXPECT_TRUE(o.valid()) << o.id << ": " << o.errors.front().name << ": " << o.errors.front().message;
       if (ours && !o.valid()) {
         ++invalid_parts;
         std::cout << "core defect (not this test's subject): " << o.id << ": " << o.errors.front().code << " "
@@ -125,7 +126,8 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
                     "/cityjson.min.schema.json";
   for (const auto& o : outputs) cmd += " -d '" + o + "'";
   const ProcessResult v = run_command(cmd);
-  for (const auto& o : outputs) EXPECT_NE(v.output.find(o + " valid"), std::string::npos) << v.output.substr(0, 4000);
+  for (const auto& o : outputs)
+    EXPECT_NE(v.output.find(o + " valid"), std::string::npos) << v.output.substr(0, 4000);
 }
 
 }  // namespace

@@ -12,16 +12,17 @@
 namespace mc::test {
 namespace {
 
-#define MC_REQUIRE_CLI()                                                                         \
-  ASSERT_TRUE(fs::exists(cli_path())) << cli_path()                                              \
-                                      << " missing: build the morphcut_city target before these tests"
+#define MC_REQUIRE_CLI()              \
+  ASSERT_TRUE(fs::exists(cli_path())) \
+      << cli_path() << " missing: build the morphcut_city target before these tests"
 
 TEST(Cli, HelpIsCompleteAndExitsZero) {
   MC_REQUIRE_CLI();
   const ProcessResult r = run_command(cli_path() + " --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* s : {"INPUT", "--config", "--output", "--threads", "--timeout", "--lod", "--report", "--summary",
-                        "--quiet", "Exit codes", "130", ".morphcut.city.json", ".morphcut.report.json", ".morphcut.csv"})
+  for (const char* s :
+       {"INPUT", "--config", "--output", "--threads", "--timeout", "--lod", "--report", "--summary",
+        "--quiet", "Exit codes", "130", ".morphcut.city.json", ".morphcut.report.json", ".morphcut.csv"})
     EXPECT_NE(r.output.find(s), std::string::npos) << "--help does not mention " << s;
 }
 
@@ -43,10 +44,11 @@ TEST(Cli, PrintConfigIsLodYamlAndShowsOverrides) {
 TEST(Cli, UsageConfigAndReadErrorsExitTwo) {
   MC_REQUIRE_CLI();
   TempDir dir("cli_errors");
-  EXPECT_EQ(run_command(cli_path()).exit_code, 2);                               // no INPUT
+  EXPECT_EQ(run_command(cli_path()).exit_code, 2);                                // no INPUT
   EXPECT_EQ(run_command(cli_path() + " x.city.json --threads -1").exit_code, 2);  // bad value
   EXPECT_EQ(run_command(cli_path() + " x.city.json --bogus").exit_code, 2);       // unknown option
-  const ProcessResult missing = run_command("cd " + dir.path.string() + " && " + cli_path() + " missing.city.json");
+  const ProcessResult missing =
+      run_command("cd " + dir.path.string() + " && " + cli_path() + " missing.city.json");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.output.find("missing.city.json"), std::string::npos) << missing.output;
   {
@@ -54,7 +56,8 @@ TEST(Cli, UsageConfigAndReadErrorsExitTwo) {
     bad << "decompose:\n  sigma: [1]\n  bogus_key: 3\n";
   }
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
-  const ProcessResult cfg = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input + " --config bad.yaml");
+  const ProcessResult cfg =
+      run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input + " --config bad.yaml");
   EXPECT_EQ(cfg.exit_code, 2);
   EXPECT_NE(cfg.output.find("decompose."), std::string::npos) << cfg.output;
   EXPECT_TRUE(fs::is_empty(dir.path) || !fs::exists(dir / "3dbag_b2.morphcut.city.json"));
@@ -68,8 +71,8 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
     std::ofstream cfg(dir / "quick.yaml");
     cfg << "decompose:\n  levels: [0.1]\n";
   }
-  const ProcessResult r =
-      run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input + " --config quick.yaml --threads 2");
+  const ProcessResult r = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
+                                      " --config quick.yaml --threads 2");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("2 ok"), std::string::npos) << r.output;  // the final summary line
   EXPECT_TRUE(fs::exists(dir / "3dbag_b2.morphcut.city.jsonl"));
@@ -82,7 +85,8 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
   // The output passes the binary's own validator (exit 0 = every object valid).
   const ProcessResult v = run_command(cli_path() + " validate " + (dir / "3dbag_b2.morphcut.city.jsonl"));
   EXPECT_EQ(v.exit_code, 0) << v.output;
-  const ProcessResult vl = run_command(cli_path() + " validate " + (dir / "3dbag_b2.morphcut.level-0.1.city.jsonl"));
+  const ProcessResult vl =
+      run_command(cli_path() + " validate " + (dir / "3dbag_b2.morphcut.level-0.1.city.jsonl"));
   EXPECT_EQ(vl.exit_code, 0) << vl.output;
   EXPECT_EQ(report["outputs"]["levels"][0]["cityjson"], "3dbag_b2.morphcut.level-0.1.city.jsonl");
   // --quiet: nothing on stderr for a clean run.
@@ -95,8 +99,9 @@ TEST(Cli, DefaultOutputNamesInTheCurrentDirectory) {
   // With -o, the report and the summary go beside the output, not into the current directory.
   fs::create_directories(dir.path / "cwd");
   fs::create_directories(dir.path / "out");
-  const ProcessResult o = run_command("cd " + (dir.path / "cwd").string() + " && " + cli_path() + " " + input +
-                                      " --config ../quick.yaml -q -o ../out/tile.morphcut.city.jsonl");
+  const ProcessResult o =
+      run_command("cd " + (dir.path / "cwd").string() + " && " + cli_path() + " " + input +
+                  " --config ../quick.yaml -q -o ../out/tile.morphcut.city.jsonl");
   EXPECT_EQ(o.exit_code, 0) << o.output;
   EXPECT_TRUE(fs::exists(dir.path / "out" / "tile.morphcut.city.jsonl"));
   EXPECT_TRUE(fs::exists(dir.path / "out" / "tile.morphcut.report.json"));
@@ -111,7 +116,8 @@ TEST(Cli, LogLevelSetsWhatReachesStderr) {
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.jsonl");
   TempDir dir("cli_log_level");
   for (const char* level : {"info", "warn", "off"})
-    std::ofstream(dir / (std::string(level) + ".yaml")) << "decompose:\n  levels: [0.1]\nlog_level: " << level << "\n";
+    std::ofstream(dir / (std::string(level) + ".yaml"))
+        << "decompose:\n  levels: [0.1]\nlog_level: " << level << "\n";
   auto run = [&](const std::string& level, const std::string& in) {
     return run_command("cd " + dir.path.string() + " && " + cli_path() + " " + in + " --config " + level +
                        ".yaml --no-html -o out.city.jsonl");
@@ -157,7 +163,8 @@ void interrupt_midway(int sig) {
     if (chdir(dir.path.c_str()) != 0) _exit(99);
     int devnull = ::open("/dev/null", O_WRONLY);
     dup2(devnull, 1), dup2(devnull, 2);
-    execl(cli_path().c_str(), "morphcut-city", input.c_str(), "--threads", "2", "-q", static_cast<char*>(nullptr));
+    execl(cli_path().c_str(), "morphcut-city", input.c_str(), "--threads", "2", "-q",
+          static_cast<char*>(nullptr));
     _exit(98);
   }
   // Wait until the outputs' temp files exist (the run is under way), then interrupt.

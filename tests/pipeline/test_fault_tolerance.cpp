@@ -25,7 +25,7 @@ struct Outcome {
 };
 
 Outcome run(const std::string& input, const mc::test::TempDir& dir, Params p,
-        std::function<void(mc::io::Feature&)> hook = {}) {
+            std::function<void(mc::io::Feature&)> hook = {}) {
   RunOptions opt;
   opt.input = input;
   opt.output = dir / "out.city.json";
@@ -79,7 +79,8 @@ TEST(FaultTolerance, ABuildingThatThrowsFailsAloneWithItsReason) {
   // The failed building's own geometry is written back unchanged.
   const json in = mc::test::load_city(input);
   EXPECT_EQ(r.output["CityObjects"][victim]["geometry"].size(), in["CityObjects"][victim]["geometry"].size());
-  EXPECT_EQ(r.output["CityObjects"].size(), in["CityObjects"].size() + parts_of(r.output, "NL.IMBAG.Pand.0503100000028341"));
+  EXPECT_EQ(r.output["CityObjects"].size(),
+            in["CityObjects"].size() + parts_of(r.output, "NL.IMBAG.Pand.0503100000028341"));
 }
 
 // A building that crashes the whole process (here the test hook aborts, as a failed assertion
@@ -146,7 +147,8 @@ TEST(FaultTolerance, ABuildingExhaustingItsDeadlineDoesNotDelayTheOthers) {
     for (int j = 1; j < nv; ++j)
       for (int i = 0; i < nu; ++i) {
         const double th = M_PI * j / nv, ph = 2 * M_PI * i / nu;
-        v.push_back({cx + 10 * std::sin(th) * std::cos(ph), 10 * std::sin(th) * std::sin(ph), 10 + 10 * std::cos(th)});
+        v.push_back({cx + 10 * std::sin(th) * std::cos(ph), 10 * std::sin(th) * std::sin(ph),
+                     10 + 10 * std::cos(th)});
       }
     const size_t bottom = v.size();
     v.push_back({cx, 0.0, 0.0});
@@ -156,17 +158,20 @@ TEST(FaultTolerance, ABuildingExhaustingItsDeadlineDoesNotDelayTheOthers) {
     for (int j = 1; j < nv - 1; ++j)
       for (int i = 0; i < nu; ++i)
         shell.push_back(json::array({json::array({at(j, i), at(j + 1, i), at(j + 1, i + 1), at(j, i + 1)})}));
-    for (int i = 0; i < nu; ++i) shell.push_back(json::array({json::array({bottom, at(nv - 1, i + 1), at(nv - 1, i)})}));
+    for (int i = 0; i < nu; ++i)
+      shell.push_back(json::array({json::array({bottom, at(nv - 1, i + 1), at(nv - 1, i)})}));
     return shell;
   };
   auto solid = [](json shell) {
-    return json::array({{{"type", "Solid"}, {"lod", "2.2"}, {"boundaries", json::array({std::move(shell)})}}});
+    return json::array(
+        {{{"type", "Solid"}, {"lod", "2.2"}, {"boundaries", json::array({std::move(shell)})}}});
   };
   objects["a_cube"] = {{"type", "Building"}, {"geometry", solid(cube(0))}};
   objects["b_dome"] = {{"type", "Building"}, {"geometry", solid(dome(100, 256, 128))}};
   objects["c_cube"] = {{"type", "Building"}, {"geometry", solid(cube(200))}};
   const std::string input = dir / "dome.city.json";
-  std::ofstream(input) << json({{"type", "CityJSON"}, {"version", "1.0"}, {"CityObjects", objects}, {"vertices", v}}).dump();
+  std::ofstream(input)
+      << json({{"type", "CityJSON"}, {"version", "1.0"}, {"CityObjects", objects}, {"vertices", v}}).dump();
 
   Params p = mc::test::default_config().params;
   // The dome (32k faces) needs about 1.5 s to preprocess in a Release build on this machine

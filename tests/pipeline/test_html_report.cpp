@@ -70,12 +70,14 @@ TEST(HtmlReport, PageFromRealOutputsIsSelfContainedAndAgreesWithTheReport) {
   // Self-contained: no script, stylesheet, image or frame from anywhere; a CSP forbidding requests.
   EXPECT_FALSE(std::regex_search(html, std::regex(R"(<script[^>]*\ssrc\s*=)", std::regex::icase)));
   EXPECT_FALSE(std::regex_search(html, std::regex(R"(<link[^>]*href\s*=)", std::regex::icase)));
-  EXPECT_FALSE(std::regex_search(html, std::regex(R"((src|href)\s*=\s*["']?(https?:)?//)", std::regex::icase)));
+  EXPECT_FALSE(
+      std::regex_search(html, std::regex(R"((src|href)\s*=\s*["']?(https?:)?//)", std::regex::icase)));
   EXPECT_FALSE(std::regex_search(html, std::regex(R"(@import|url\(\s*["']?https?:)", std::regex::icase)));
   EXPECT_NE(html.find("Content-Security-Policy\" content=\"default-src 'none'"), std::string::npos);
   if (html_assets::kHasThree) {
     EXPECT_NE(html.find("var THREE = "), std::string::npos);
-    EXPECT_NE(html.find("Permission is hereby granted, free of charge"), std::string::npos);  // three's MIT licence
+    EXPECT_NE(html.find("Permission is hereby granted, free of charge"),
+              std::string::npos);  // three's MIT licence
   }
 
   // Inline data agrees with the report: every building, its status and parts per level; 3D
@@ -202,8 +204,9 @@ TEST(HtmlReport, CliWritesThePageByDefaultAndTheSubcommandRemakesIt) {
   EXPECT_EQ(h.exit_code, 0) << h.output;
   EXPECT_EQ(mc::test::slurp(dir / "again.html"), mc::test::slurp(page));
 
-  const auto n = run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
-                             " --config quick.yaml --threads 2 -q --no-html -o none/tile.morphcut.city.jsonl");
+  const auto n =
+      run_command("cd " + dir.path.string() + " && " + cli_path() + " " + input +
+                  " --config quick.yaml --threads 2 -q --no-html -o none/tile.morphcut.city.jsonl");
   EXPECT_EQ(n.exit_code, 0) << n.output;
   EXPECT_TRUE(mc::test::fs::exists(dir / "none/tile.morphcut.report.json"));
   EXPECT_FALSE(mc::test::fs::exists(dir / "none/tile.morphcut.html"));

@@ -65,7 +65,8 @@ TEST(Job, DecomposesA3dBagBuildingIntoClosedParts) {
       const json& part = objs[id];
       EXPECT_EQ(part["type"], "BuildingPart");
       EXPECT_EQ(part["parents"], json::array({b.id}));
-      EXPECT_NE(std::find(building["children"].begin(), building["children"].end(), id), building["children"].end());
+      EXPECT_NE(std::find(building["children"].begin(), building["children"].end(), id),
+                building["children"].end());
       EXPECT_EQ(part["attributes"]["morphcut_level"], l.threshold);
       EXPECT_EQ(part["attributes"]["morphcut_index"], j);
       EXPECT_GT(part["attributes"]["volume"].get<double>(), 0);
@@ -89,13 +90,15 @@ TEST(Job, DecomposesA3dBagBuildingIntoClosedParts) {
   const LevelOutcome& fine = b.levels.back();
   ASSERT_GT(fine.parts, 1u);
   bool closure = false;
-  for (const auto& s : objs[b.id + "-mc" + std::to_string(fine.index) + "-0"]["geometry"][0]["semantics"]["surfaces"])
+  for (const auto& s :
+       objs[b.id + "-mc" + std::to_string(fine.index) + "-0"]["geometry"][0]["semantics"]["surfaces"])
     closure = closure || s["type"] == "ClosureSurface";
   EXPECT_TRUE(closure);
   // Volumes of one level add up to the building volume.
   double sum = 0;
   for (size_t j = 0; j < fine.parts; ++j)
-    sum += objs[b.id + "-mc" + std::to_string(fine.index) + "-" + std::to_string(j)]["attributes"]["volume"].get<double>();
+    sum += objs[b.id + "-mc" + std::to_string(fine.index) + "-" + std::to_string(j)]["attributes"]["volume"]
+               .get<double>();
   ASSERT_TRUE(b.measures.volume.has_value());
   EXPECT_NEAR(sum, *b.measures.volume, 1e-6 * *b.measures.volume);
   EXPECT_EQ(b.measures.centroid_method, "solid");
@@ -124,7 +127,8 @@ TEST(Job, BrokenGeometryFailsAndPassesThroughUnchanged) {
   auto features = read_all(path, h);
   mc::io::Feature bad = features[0];
   for (auto& v : bad.vertices) v.z = 0;  // flattened: no volume, nothing can be inside
-  const BuildingOutcome b = run_building(bad, h, mc::test::default_config().params, mc::test::default_config().run);
+  const BuildingOutcome b =
+      run_building(bad, h, mc::test::default_config().params, mc::test::default_config().run);
   EXPECT_EQ(b.status, "failed");
   EXPECT_FALSE(b.reason.empty());
   EXPECT_EQ(b.feature.vertices.size(), bad.vertices.size());
@@ -157,7 +161,8 @@ TEST(Job, NonBuildingsPassThroughUntouched) {
   for (const auto& f : features) {
     if (mc::io::is_building(f)) continue;
     seen = true;
-    const BuildingOutcome b = run_building(f, h, mc::test::default_config().params, mc::test::default_config().run);
+    const BuildingOutcome b =
+        run_building(f, h, mc::test::default_config().params, mc::test::default_config().run);
     EXPECT_FALSE(b.is_building);
     EXPECT_EQ(b.feature.objects, f.objects);
     EXPECT_EQ(b.feature.vertices.size(), f.vertices.size());

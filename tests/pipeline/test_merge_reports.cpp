@@ -16,7 +16,9 @@ using mc::test::json;
 using mc::test::slurp;
 namespace fs = std::filesystem;
 
-void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void write(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 
 class MergeReports : public ::testing::Test {
  protected:
@@ -26,8 +28,8 @@ class MergeReports : public ::testing::Test {
     if (a_.empty() || b_.empty()) return;
     dir_ = new mc::test::TempDir("merge");
     for (const std::string& in : {a_, b_}) {
-      const auto r = mc::test::run_command("cd " + dir_->path.string() + " && " + mc::test::cli_path() + " " + in +
-                                           " --threads 2 -q");
+      const auto r = mc::test::run_command("cd " + dir_->path.string() + " && " + mc::test::cli_path() + " " +
+                                           in + " --threads 2 -q");
       ok_ = ok_ && (r.exit_code == 0 || r.exit_code == 1);
       if (!ok_) ADD_FAILURE() << r.output;
     }
@@ -112,8 +114,9 @@ TEST_F(MergeReports, AMissingTileIsListedAndTheExitCodeIsOne) {
   const std::string list = *dir_ / "tiles.txt";
   write(list, "# three tiles, one never ran\n" + a_ + "\n\n/data/never_ran.city.json\n" + b_ + "\n");
   const std::string out = *dir_ / "with_missing.report.json";
-  const auto r = mc::test::run_command(mc::test::cli_path() + " merge-reports --tiles " + list + " --dir " +
-                                       dir_->path.string() + " -o " + out + " --csv " + (*dir_ / "with_missing.csv"));
+  const auto r =
+      mc::test::run_command(mc::test::cli_path() + " merge-reports --tiles " + list + " --dir " +
+                            dir_->path.string() + " -o " + out + " --csv " + (*dir_ / "with_missing.csv"));
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("missing tile never_ran"), std::string::npos) << r.output;
   const json m = json::parse(slurp(out));

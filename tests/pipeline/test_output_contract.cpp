@@ -18,7 +18,8 @@ namespace {
 
 using mc::test::json;
 
-std::vector<mc::io::Feature> read_some(const std::string& path, mc::io::Header& h, const std::set<std::string>& ids = {}) {
+std::vector<mc::io::Feature> read_some(const std::string& path, mc::io::Header& h,
+                                       const std::set<std::string>& ids = {}) {
   mc::io::CityJsonReader r(path);
   h = r.header();
   std::vector<mc::io::Feature> out;
@@ -97,7 +98,8 @@ TEST(LevelViews, EachLevelIsOneCoherentBuilding) {
       if (lod == "2.2") EXPECT_TRUE(is_morphcut_part(v.objects[id])) << id;
     for (auto it = input.objects.begin(); it != input.objects.end(); ++it) {
       ASSERT_TRUE(v.objects.contains(it.key()));
-      if (it->contains("attributes") && it.key() != input.id) EXPECT_EQ(v.objects[it.key()]["attributes"], (*it)["attributes"]);
+      if (it->contains("attributes") && it.key() != input.id)
+        EXPECT_EQ(v.objects[it.key()]["attributes"], (*it)["attributes"]);
     }
   }
 }
@@ -156,13 +158,15 @@ TEST(LevelViews, ValidateFlagsLevelsStackedUnderOneBuilding) {
 // that output with their coordinates as written: `validate` flags each with val3dity's code, on
 // the face val3dity names, and nothing else as invalid.
 TEST(PartRepair, ValidateFlagsWhatVal3dityRejected) {
-  const std::string path = std::string(MC_SOURCE_DIR) + "/tests/pipeline/data/val3dity_rejected_parts_3dbag.city.json";
+  const std::string path =
+      std::string(MC_SOURCE_DIR) + "/tests/pipeline/data/val3dity_rejected_parts_3dbag.city.json";
   const std::map<std::string, std::pair<int, std::string>> rejected = {
       {"NL.IMBAG.Pand.0503100000019275-mc0-0", {104, "face 108:"}},
       {"NL.IMBAG.Pand.0503100000019275-mc1-6", {104, "face 67:"}},
       {"NL.IMBAG.Pand.0503100000025100-mc0-0", {104, "face 12:"}},
       {"NL.IMBAG.Pand.0503100000025101-mc1-17", {104, "face 0:"}},
-      {"NL.IMBAG.Pand.0503100000019275-mc2-68", {204, "face 22: its triangles' normals differ by 24.39 degrees"}},
+      {"NL.IMBAG.Pand.0503100000019275-mc2-68",
+       {204, "face 22: its triangles' normals differ by 24.39 degrees"}},
       {"NL.IMBAG.Pand.0503100000027992-mc1-3", {204, "differ by 29.06 degrees"}},
       {"NL.IMBAG.Pand.0503100000027992-mc2-5", {204, "differ by 29.06 degrees"}},
       {"NL.IMBAG.Pand.0503100000027992-mc3-5", {204, "differ by 29.06 degrees"}}};
@@ -176,7 +180,8 @@ TEST(PartRepair, ValidateFlagsWhatVal3dityRejected) {
     ASSERT_TRUE(found.count(id)) << id;
     ASSERT_FALSE(found[id].empty()) << id;
     EXPECT_EQ(found[id][0].code, want.first) << id;
-    EXPECT_NE(found[id][0].message.find(want.second), std::string::npos) << id << ": " << found[id][0].message;
+    EXPECT_NE(found[id][0].message.find(want.second), std::string::npos)
+        << id << ": " << found[id][0].message;
   }
 }
 
@@ -184,7 +189,8 @@ TEST(PartRepair, ValidateFlagsWhatVal3dityRejected) {
 // vertex): the top is no longer planar within val3dity's 1 cm (203). The repair writes it as
 // triangles; the part then passes.
 TEST(PartRepair, BentFacesAreWrittenAsTriangles) {
-  std::vector<Vec3> pool = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1.1}, {0, 1, 1}};
+  std::vector<Vec3> pool = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},   {0, 1, 0},
+                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1.1}, {0, 1, 1}};
   std::vector<GridFace> cube = {{{{0, 3, 2, 1}}}, {{{4, 5, 6, 7}}}, {{{0, 1, 5, 4}}},
                                 {{{1, 2, 6, 5}}}, {{{2, 3, 7, 6}}}, {{{3, 0, 4, 7}}}};
   SolidCheck before;
@@ -202,21 +208,20 @@ TEST(PartRepair, BentFacesAreWrittenAsTriangles) {
 // traced as one ring it visits v twice, which val3dity calls not simple (104). The repair cuts
 // it at v into the outer ring and the chimney's hole (touching at one point: valid).
 TEST(PartRepair, SelfTouchingRingIsSplitIntoSimpleRings) {
-  std::vector<Vec3> pool = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0},            // 0-3 bottom
-                            {0, 0, 1}, {4, 0, 1}, {4, 4, 1}, {0, 4, 1}, {0, 2, 1},  // 4-7 top, 8 = v
-                            {1, 1.5, 1}, {1, 2.5, 1},                               // 9, 10 chimney base
-                            {0, 2, 2}, {1, 1.5, 2}, {1, 2.5, 2}};                   // 11-13 chimney top
-  std::vector<GridFace> solid = {
-      {{{0, 3, 2, 1}}},                  // ground
-      {{{0, 1, 5, 4}}},                  // front wall
-      {{{1, 2, 6, 5}}},                  // right wall
-      {{{2, 3, 7, 6}}},                  // back wall
-      {{{3, 0, 4, 8, 7}}},               // left wall, v on its top edge
-      {{{4, 5, 6, 7, 8, 10, 9, 8}}},     // roof: one ring through v twice
-      {{{8, 9, 12, 11}}},                // chimney walls
-      {{{9, 10, 13, 12}}},
-      {{{10, 8, 11, 13}}},
-      {{{11, 12, 13}}}};                 // chimney top
+  std::vector<Vec3> pool = {{0, 0, 0},   {4, 0, 0},   {4, 4, 0},  {0, 4, 0},             // 0-3 bottom
+                            {0, 0, 1},   {4, 0, 1},   {4, 4, 1},  {0, 4, 1}, {0, 2, 1},  // 4-7 top, 8 = v
+                            {1, 1.5, 1}, {1, 2.5, 1},                                    // 9, 10 chimney base
+                            {0, 2, 2},   {1, 1.5, 2}, {1, 2.5, 2}};                      // 11-13 chimney top
+  std::vector<GridFace> solid = {{{{0, 3, 2, 1}}},                                       // ground
+                                 {{{0, 1, 5, 4}}},                                       // front wall
+                                 {{{1, 2, 6, 5}}},                                       // right wall
+                                 {{{2, 3, 7, 6}}},                                       // back wall
+                                 {{{3, 0, 4, 8, 7}}},            // left wall, v on its top edge
+                                 {{{4, 5, 6, 7, 8, 10, 9, 8}}},  // roof: one ring through v twice
+                                 {{{8, 9, 12, 11}}},             // chimney walls
+                                 {{{9, 10, 13, 12}}},
+                                 {{{10, 8, 11, 13}}},
+                                 {{{11, 12, 13}}}};  // chimney top
   SolidCheck c;
   const std::string defect = grid_solid_defect(solid, pool, &c);
   ASSERT_FALSE(defect.empty());
@@ -227,7 +232,8 @@ TEST(PartRepair, SelfTouchingRingIsSplitIntoSimpleRings) {
   EXPECT_EQ(r.split_faces, 1u);
   ASSERT_EQ(r.faces.size(), solid.size());
   bool roof_with_hole = false;
-  for (const auto& f : r.faces) roof_with_hole = roof_with_hole || (f.rings.size() == 2 && f.rings[1].size() == 3);
+  for (const auto& f : r.faces)
+    roof_with_hole = roof_with_hole || (f.rings.size() == 2 && f.rings[1].size() == 3);
   EXPECT_TRUE(roof_with_hole);
 }
 

@@ -21,7 +21,8 @@ struct Outputs {
 };
 
 Outputs run_on(const std::string& input, const mc::test::TempDir& dir, const std::string& tag, int threads,
-               Params p = mc::test::default_config().params, RunConfig rc = {}, std::function<void(mc::io::Feature&)> hook = {}) {
+               Params p = mc::test::default_config().params, RunConfig rc = {},
+               std::function<void(mc::io::Feature&)> hook = {}) {
   const bool seq = input.size() > 6 && input.substr(input.size() - 6) == ".jsonl";
   Outputs o;
   o.output = dir / (tag + (seq ? ".city.jsonl" : ".city.json"));
@@ -104,9 +105,11 @@ TEST(Run, CityJsonFileEveryObjectKeptPartsClosedReportsComplete) {
   ASSERT_EQ(r["buildings"].size(), 2u);
   for (const auto& b : r["buildings"]) {
     EXPECT_EQ(b["status"], "ok");
-    for (const char* k : {"read", "extract", "preprocess", "decompose", "write"}) EXPECT_TRUE(b["timings"][k].is_number()) << k;
+    for (const char* k : {"read", "extract", "preprocess", "decompose", "write"})
+      EXPECT_TRUE(b["timings"][k].is_number()) << k;
     EXPECT_EQ(b["timings"]["levels"].size(), 4u);
-    for (const char* k : {"input_faces", "planes", "cells", "concave_edges"}) EXPECT_GT(b["sizes"][k].get<double>(), 0) << k;
+    for (const char* k : {"input_faces", "planes", "cells", "concave_edges"})
+      EXPECT_GT(b["sizes"][k].get<double>(), 0) << k;
     ASSERT_EQ(b["levels"].size(), 4u);
     for (const auto& l : b["levels"]) {
       EXPECT_GE(l["parts"].get<int>(), 1);
@@ -158,21 +161,23 @@ TEST(Run, ThreadCountDoesNotChangeAByteOfTheOutputs) {
   // No deadline (a deadline makes results depend on timing, by design).
   std::ofstream(dir / "det.yaml") << "timeout_s: 0\n";
   for (const char* t : {"1", "2"}) {
-    const auto r = mc::test::run_command(mc::test::cli_path() + " " + input + " -q --config " + (dir / "det.yaml") +
-                                         " --threads " + t + " -o " +
-                                         (dir / (std::string("t") + t + ".city.jsonl")) + " --summary " +
-                                         (dir / (std::string("t") + t + ".csv")) + " --no-report");
+    const auto r =
+        mc::test::run_command(mc::test::cli_path() + " " + input + " -q --config " + (dir / "det.yaml") +
+                              " --threads " + t + " -o " + (dir / (std::string("t") + t + ".city.jsonl")) +
+                              " --summary " + (dir / (std::string("t") + t + ".csv")) + " --no-report");
     ASSERT_LE(r.exit_code, 1) << r.output;
   }
   check_output(input, dir / "t1.city.jsonl");
   const std::string a = mc::test::slurp(dir / "t1.city.jsonl"), b = mc::test::slurp(dir / "t2.city.jsonl");
   ASSERT_FALSE(a.empty());
   EXPECT_TRUE(a == b) << "CityJSONSeq outputs differ between --threads 1 and 2";
-  const auto l1 = mc::test::level_files(dir / "t1.city.jsonl"), l2 = mc::test::level_files(dir / "t2.city.jsonl");
+  const auto l1 = mc::test::level_files(dir / "t1.city.jsonl"),
+             l2 = mc::test::level_files(dir / "t2.city.jsonl");
   ASSERT_EQ(l1.size(), 4u);
   ASSERT_EQ(l2.size(), l1.size());
   for (size_t i = 0; i < l1.size(); ++i)
-    EXPECT_TRUE(mc::test::slurp(l1[i]) == mc::test::slurp(l2[i])) << l1[i] << " differs between --threads 1 and 2";
+    EXPECT_TRUE(mc::test::slurp(l1[i]) == mc::test::slurp(l2[i]))
+        << l1[i] << " differs between --threads 1 and 2";
   EXPECT_TRUE(mc::test::slurp(dir / "t1.csv") == mc::test::slurp(dir / "t2.csv")) << "summary CSVs differ";
 }
 
@@ -189,7 +194,8 @@ TEST(Run, RepeatedRunsInOneProcessAreIdentical) {
   const auto l1 = mc::test::level_files(one.output), l2 = mc::test::level_files(two.output);
   ASSERT_FALSE(l1.empty());
   ASSERT_EQ(l1.size(), l2.size());
-  for (size_t i = 0; i < l1.size(); ++i) EXPECT_TRUE(mc::test::slurp(l1[i]) == mc::test::slurp(l2[i])) << l1[i];
+  for (size_t i = 0; i < l1.size(); ++i)
+    EXPECT_TRUE(mc::test::slurp(l1[i]) == mc::test::slurp(l2[i])) << l1[i];
   mc::test::expect_valid_output(one.output);
 }
 
@@ -225,7 +231,8 @@ TEST(Run, LargestFirstStartsTheLargestAndKeepsTheOutputsInInputOrder) {
     EXPECT_TRUE(mc::test::slurp(a.output) == mc::test::slurp(o->output)) << o->output;
     const auto la = mc::test::level_files(a.output), lo = mc::test::level_files(o->output);
     ASSERT_EQ(la.size(), lo.size());
-    for (size_t i = 0; i < la.size(); ++i) EXPECT_TRUE(mc::test::slurp(la[i]) == mc::test::slurp(lo[i])) << lo[i];
+    for (size_t i = 0; i < la.size(); ++i)
+      EXPECT_TRUE(mc::test::slurp(la[i]) == mc::test::slurp(lo[i])) << lo[i];
   }
   // The report lists the buildings in input order. Real 3D BAG solids take the labelling's fast
   // path (docs/algorithm.md §6.6); a building that does not says why.
@@ -276,7 +283,7 @@ TEST(Run, AFailingBuildingIsWrittenThroughAndTheOthersProcessed) {
   size_t parts = 0;
   for (auto it = out["CityObjects"].begin(); it != out["CityObjects"].end(); ++it)
     parts += it.key().find("-mc") != std::string::npos;
-  EXPECT_GE(parts, 2u);  // the other building's parts
+  EXPECT_GE(parts, 2u);                     // the other building's parts
   mc::test::expect_valid_output(o.output);  // the failed building is a note, not an error
   const json r = json::parse(mc::test::slurp(o.report));
   EXPECT_EQ(r["counts"]["failed"], 1);
@@ -291,7 +298,8 @@ TEST(Run, AFailingBuildingIsWrittenThroughAndTheOthersProcessed) {
 TEST(Run, OutputLevelsAndLodSelectWhatIsWritten) {
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
   mc::test::TempDir dir("run_levels");
-  const LoadedConfig cfg = load_config_string("decompose:\n  levels: [0.1, 0.01]\noutput_levels: [0.01]\nlod: \"2.2\"\n");
+  const LoadedConfig cfg =
+      load_config_string("decompose:\n  levels: [0.1, 0.01]\noutput_levels: [0.01]\nlod: \"2.2\"\n");
   const Outputs o = run_on(input, dir, "l", 2, cfg.params, cfg.run);
   EXPECT_EQ(o.result.counts.at("ok"), 2u);
   const json out = mc::test::load_outputs(o.output);

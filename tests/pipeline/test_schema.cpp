@@ -10,7 +10,8 @@ TEST(Schema, OutputValidatesAgainstCityJson20) {
   if (ajv.empty())
     GTEST_SKIP() << "ajv-cli not installed (run tools/setup-deps.sh, which puts it in build/node_tools): "
                     "schema validation of the output NOT checked";
-  if (!fs::exists(schema_dir() + "/cityjson.min.schema.json")) GTEST_SKIP() << "CityJSON 2.0 schema not found";
+  if (!fs::exists(schema_dir() + "/cityjson.min.schema.json"))
+    GTEST_SKIP() << "CityJSON 2.0 schema not found";
   ASSERT_TRUE(fs::exists(cli_path())) << "build the morphcut_city target first";
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
   TempDir dir("schema");
@@ -22,13 +23,15 @@ TEST(Schema, OutputValidatesAgainstCityJson20) {
                                         " --config quick.yaml -q -o out.city.json --no-report --no-summary");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   // Every file the run wrote: the annotated input and one city per level (docs/output-format.md).
-  const std::vector<std::string> files = {"out.city.json", "out.level-0.1.city.json", "out.level-0.001.city.json"};
+  const std::vector<std::string> files = {"out.city.json", "out.level-0.1.city.json",
+                                          "out.level-0.001.city.json"};
   // The level files have to be real decompositions for the check to mean anything.
   size_t parts = 0;
   for (size_t k = 1; k < files.size(); ++k) {
     const json level = json::parse(slurp(dir / files[k]));
     size_t here = 0;
-    for (auto it = level["CityObjects"].begin(); it != level["CityObjects"].end(); ++it) here += it.key().find("-mc") != std::string::npos;
+    for (auto it = level["CityObjects"].begin(); it != level["CityObjects"].end(); ++it)
+      here += it.key().find("-mc") != std::string::npos;
     EXPECT_GT(here, 0u) << files[k];
     parts += here;
     expect_valid_output(dir / files[k], here);
@@ -45,7 +48,8 @@ TEST(Schema, OutputValidatesAgainstCityJson20) {
   for (const auto& f : files) cmd += " -d " + (dir / f);
   cmd += " -d " + (dir / "broken.city.json");
   const ProcessResult v = run_command(cmd);
-  for (const auto& f : files) EXPECT_NE(v.output.find(f + " valid"), std::string::npos) << cmd << "\n" << v.output.substr(0, 4000);
+  for (const auto& f : files)
+    EXPECT_NE(v.output.find(f + " valid"), std::string::npos) << cmd << "\n" << v.output.substr(0, 4000);
   EXPECT_NE(v.output.find("broken.city.json invalid"), std::string::npos) << v.output.substr(0, 2000);
 }
 

@@ -15,7 +15,8 @@ namespace {
 // Axis-aligned box [o, o + d], outward faces, labelled like a building.
 PolygonMesh box(Vec3 o, Vec3 d) {
   PolygonMesh m;
-  for (int i = 0; i < 8; ++i) m.vertices.push_back({o.x + (i & 1) * d.x, o.y + ((i >> 1) & 1) * d.y, o.z + ((i >> 2) & 1) * d.z});
+  for (int i = 0; i < 8; ++i)
+    m.vertices.push_back({o.x + (i & 1) * d.x, o.y + ((i >> 1) & 1) * d.y, o.z + ((i >> 2) & 1) * d.z});
   auto face = [&](std::vector<uint32_t> r, const char* l) {
     Polygon p;
     p.rings.push_back(std::move(r));
@@ -44,7 +45,8 @@ TEST(Measures, VolumeCentroidFootprintHeightOfABoxFarFromTheOrigin) {
   EXPECT_NEAR(*height(m), 6, 1e-12);
   EXPECT_NEAR(bbox_centre(m)->z, 1, 1e-12);
   // Two boxes = sum; an inward-facing copy has negative volume.
-  const VolumeCentroid two = volume_centroid(std::vector<PolygonMesh>{m, box({85010, 446000, -2}, {10, 20, 6})});
+  const VolumeCentroid two =
+      volume_centroid(std::vector<PolygonMesh>{m, box({85010, 446000, -2}, {10, 20, 6})});
   EXPECT_NEAR(two.volume, 2400, 1e-6);
   EXPECT_NEAR(two.centroid.x, 85010, 1e-6);
 }
@@ -60,7 +62,8 @@ TEST(Measures, FootprintFallsBackToTheConvexHullWithoutGround) {
 
 TEST(Measures, ProjectedAreaSubtractsHoles) {
   PolygonMesh m;
-  for (Vec3 v : {Vec3{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {1, 1, 0}, {1, 2, 0}, {2, 2, 0}, {2, 1, 0}}) m.vertices.push_back(v);
+  for (Vec3 v : {Vec3{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {1, 1, 0}, {1, 2, 0}, {2, 2, 0}, {2, 1, 0}})
+    m.vertices.push_back(v);
   Polygon p;
   p.rings = {{0, 1, 2, 3}, {4, 5, 6, 7}};
   EXPECT_NEAR(projected_area(m, p), 15, 1e-12);
@@ -83,7 +86,8 @@ TEST(Sha256, KnownVectors) {
 }
 
 TEST(SolidCheck, ClosedBoxPassesDefectsAreNamed) {
-  Shell cube = {{{0, 2, 3, 1}}, {{4, 5, 7, 6}}, {{0, 1, 5, 4}}, {{2, 6, 7, 3}}, {{0, 4, 6, 2}}, {{1, 3, 7, 5}}};
+  Shell cube = {{{0, 2, 3, 1}}, {{4, 5, 7, 6}}, {{0, 1, 5, 4}},
+                {{2, 6, 7, 3}}, {{0, 4, 6, 2}}, {{1, 3, 7, 5}}};
   EXPECT_EQ(closed_shell_defect(cube), "");
   Shell open = cube;
   open.pop_back();
@@ -137,8 +141,9 @@ TEST(Summary, ColumnsNameEveryWrittenLevel) {
   EXPECT_EQ(c[0], "id");
   EXPECT_NE(std::find(c.begin(), c.end(), "parts_0.1"), c.end());
   EXPECT_NE(std::find(c.begin(), c.end(), "parts_0.001"), c.end());
-  for (const char* s : {"height", "footprint_area", "volume", "convexity", "mean_part_convexity", "largest_part_share",
-                        "max_degree", "end_parts", "centroid_x", "centroid_y", "centroid_z", "lon", "lat"})
+  for (const char* s :
+       {"height", "footprint_area", "volume", "convexity", "mean_part_convexity", "largest_part_share",
+        "max_degree", "end_parts", "centroid_x", "centroid_y", "centroid_z", "lon", "lat"})
     EXPECT_NE(std::find(c.begin(), c.end(), s), c.end()) << s;
 }
 

@@ -18,7 +18,8 @@ const std::string& real_output() {
   static const std::string path = [] {
     const std::string input = data_file("cjseq/3dbag_b2.city.json");
     if (input.empty()) return std::string();
-    const fs::path dir = fs::path(MC_BINARY_DIR) / "test_tmp" / ("validate_out." + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::path(MC_BINARY_DIR) / "test_tmp" / ("validate_out." + std::to_string(::getpid()));
     fs::create_directories(dir);
     LoadedConfig cfg = load_config_string("decompose:\n  levels: [0.1, 0.01]\n");
     cfg.params.threads = 2;
@@ -31,7 +32,7 @@ const std::string& real_output() {
   return path;
 }
 
-#define MC_REQUIRE_OUTPUT()                                                         \
+#define MC_REQUIRE_OUTPUT()                                                                  \
   if (real_output().empty()) GTEST_SKIP() << "test data cjseq/3dbag_b2.city.json not found"; \
   const json original = json::parse(slurp(real_output()))
 
@@ -69,7 +70,8 @@ Findings validate_json(const json& doc, const TempDir& dir, const std::string& n
 std::map<std::string, std::vector<std::string>> parts_of(const json& doc) {
   std::map<std::string, std::vector<std::string>> out;
   for (auto it = doc["CityObjects"].begin(); it != doc["CityObjects"].end(); ++it)
-    if ((*it)["type"] == "BuildingPart" && it->contains("attributes") && (*it)["attributes"].contains("morphcut_level"))
+    if ((*it)["type"] == "BuildingPart" && it->contains("attributes") &&
+        (*it)["attributes"].contains("morphcut_level"))
       out[(*it)["parents"][0].get<std::string>()].push_back(it.key());
   return out;
 }
@@ -86,7 +88,8 @@ TEST(Validate, RealOutputIsValidAndTight) {
   // The parts add up to the cell within quantisation (1 mm grid), far tighter than any damage.
   EXPECT_LT(c.max_volume_deviation, 1e-3);
   for (const auto& [building, ids] : parts_of(original))
-    EXPECT_TRUE(original["CityObjects"][building]["attributes"]["morphcut_cell_volume"].get<double>() > 100.0) << building;
+    EXPECT_TRUE(original["CityObjects"][building]["attributes"]["morphcut_cell_volume"].get<double>() > 100.0)
+        << building;
 }
 
 TEST(Validate, MovedVertexMakesFacesNonPlanar) {
@@ -201,7 +204,8 @@ TEST(Validate, CliExitCodesAndJsonReport) {
   ASSERT_TRUE(fs::exists(cli_path())) << "build the morphcut_city target first";
   MC_REQUIRE_OUTPUT();
   TempDir dir("validate_cli");
-  const ProcessResult ok = run_command(cli_path() + " validate " + real_output() + " --json " + (dir / "r.json"));
+  const ProcessResult ok =
+      run_command(cli_path() + " validate " + real_output() + " --json " + (dir / "r.json"));
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("VALID"), std::string::npos) << ok.output;
   const json r = json::parse(slurp(dir / "r.json"));
@@ -227,7 +231,8 @@ TEST(Validate, CliExitCodesAndJsonReport) {
   std::ofstream(dir / "bad.city.json") << doc.dump();
   const ProcessResult bad = run_command(cli_path() + " validate " + (dir / "bad.city.json"));
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
-  EXPECT_NE(bad.output.find(ids[0] + " (BuildingPart): 302 SHELL_NOT_CLOSED"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find(ids[0] + " (BuildingPart): 302 SHELL_NOT_CLOSED"), std::string::npos)
+      << bad.output;
   EXPECT_NE(bad.output.find("INVALID"), std::string::npos);
   EXPECT_EQ(run_command(cli_path() + " validate " + (dir / "bad.city.json") + " -q").output, "");
 

@@ -11,7 +11,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSample = fs::path(MC_SOURCE_DIR) / ".." / "shared" / "datasets" / "morphcut-samples" / "sample1" / "00253.off";
+const fs::path kSample =
+    fs::path(MC_SOURCE_DIR) / ".." / "shared" / "datasets" / "morphcut-samples" / "sample1" / "00253.off";
 const fs::path kTool = fs::path(MC_BINARY_DIR) / "tools" / "morphcut";
 
 nlohmann::json run(const std::string& args, const fs::path& out) {
