@@ -5,6 +5,7 @@ DEMO_INPUT ?= datasets/3dbag/3dbag_5910.city.json
 DEMO_OUT ?= $(BUILD)/demo
 
 FUZZ_SECONDS ?= 20
+CMAKE_ARGS ?=
 
 .PHONY: all deps configure build test demo bench clean test-sanitize fuzz
 
@@ -14,7 +15,7 @@ deps:
 	@bash tools/setup-deps.sh
 
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS) >/dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)

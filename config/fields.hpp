@@ -29,7 +29,11 @@ struct Range {
   std::string text() const;          // "(0, 90)", ">= 1 (0 = all)", "one of z, y, auto"; "" for Any
 };
 inline Range any() { return {}; }
-inline Range finite() { return {Range::Finite}; }
+inline Range finite() {
+  Range r;
+  r.kind = Range::Finite;
+  return r;
+}
 inline Range in(double lo, double hi, bool lo_open, bool hi_open, const char* note = "") {
   return {Range::Interval, lo, hi, lo_open, hi_open, note, {}};
 }

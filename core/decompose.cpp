@@ -145,7 +145,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       if (p.revisit_boundaries && li > 0)  // (takes its own copy of prev: the undo below needs it)
         revisit_boundaries(pre, p, prev, work, ctx, obj, deadline, level);
       if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
-      if (p.merge_convex_parts) merge_convex_neighbours(pre, p, work, ctx, obj);
+      if (p.merge_convex_parts) merge_convex_neighbours(pre, work, ctx, obj);
       if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev, work, ctx, obj);
     } else {
       out.partial = true;

@@ -18,7 +18,7 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
 // §14.2: parts smaller than v_min merged into a neighbour, smallest first.
 void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min);
 // §14.3: neighbouring parts merged while that lowers the level's cost.
-void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, std::vector<LevelPart>& work,
+void merge_convex_neighbours(const Preprocessed& pre, std::vector<LevelPart>& work,
                              const AnalysisContext& ctx, const Objective& obj);
 // §14.4: cuts of a level that raise its whole-building cost put back.
 void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const std::vector<LevelPart>& prev,

@@ -20,7 +20,7 @@ namespace mc::level {
 // such a pair removes a part at no loss of convexity; a merge is only taken if the union has no
 // concave line significant at this level (the level would cut it again) and stays 2-manifold.
 // Greedy, best decrease first; ties by part index (deterministic).
-void merge_convex_neighbours(const Preprocessed& pre, const DecomposeParams& p, std::vector<LevelPart>& work,
+void merge_convex_neighbours(const Preprocessed& pre, std::vector<LevelPart>& work,
                              const AnalysisContext& ctx, const Objective& obj) {
   const CellComplex& cx = *pre.complex;
   if (work.size() < 2) return;

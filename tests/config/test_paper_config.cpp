@@ -62,7 +62,7 @@ TEST(PaperConfig, OtherSamples) {
   EXPECT_EQ(p20.dec.levels.size(), 4u);
   EXPECT_DOUBLE_EQ(p20.pre.cell_size, 2.0);
   const fs::path f24 = config_of("sample24");
-  if (!f24.empty()) EXPECT_FALSE(mc::load_paper_config(f24.string()).dec.with_bisector);
+  if (!f24.empty()) { EXPECT_FALSE(mc::load_paper_config(f24.string()).dec.with_bisector); }
 }
 
 class PaperFile : public ::testing::Test {

@@ -118,7 +118,7 @@ inline std::vector<Sample> samples() {
     for (const auto& f : std::filesystem::directory_iterator(dir.path())) {
       const std::string fn = f.path().filename().string();
       if (fn.size() > 4 && fn.ends_with(".off") && !fn.ends_with("_reconstruction.off")) {
-        Sample s{dir.path().filename().string(), f.path(), {}};
+        Sample s{dir.path().filename().string(), f.path(), {}, {}};
         s.config = read_numeric_config(f.path().string() + "_config.json");
         s.used = read_param_txt(f.path().string() + "_param.txt");
         out.push_back(std::move(s));

@@ -33,7 +33,7 @@ void expect_partition(const std::vector<PlaneRegion>& rs, size_t n_faces) {
   std::vector<int> seen(n_faces, 0);
   for (size_t i = 0; i < rs.size(); ++i) {
     EXPECT_NEAR(norm(rs[i].plane.n), 1.0, 1e-9);
-    if (i > 0) EXPECT_GE(rs[i - 1].area, rs[i].area);
+    if (i > 0) { EXPECT_GE(rs[i - 1].area, rs[i].area); }
     EXPECT_TRUE(std::is_sorted(rs[i].faces.begin(), rs[i].faces.end()));
     for (uint32_t f : rs[i].faces) ++seen.at(f);
   }
@@ -75,7 +75,7 @@ TEST(Segmentation, PlanesAndAreasAreRight) {
   }
   // Majority orientation follows the (outward) faces: the roof normal points up.
   for (const auto& r : rs)
-    if (r.bbox.lo.z > 5) EXPECT_GT(r.plane.n.z, 0.99);
+    if (r.bbox.lo.z > 5) { EXPECT_GT(r.plane.n.z, 0.99); }
   // Semantic labels: roof region labelled Roof.
   const PolygonMesh m = test::l_prism();
   for (const auto& r : rs) EXPECT_EQ(r.semantic, m.faces[r.faces[0]].semantic);

@@ -91,14 +91,14 @@ Model load_model(const std::string& path) {
 
 void expect_same(const Model& a, const Model& b, bool same_format) {
   EXPECT_EQ(a.version, b.version);
-  if (same_format) EXPECT_EQ(a.root, b.root);
+  if (same_format) { EXPECT_EQ(a.root, b.root); }
   EXPECT_EQ(a.objects.size(), b.objects.size());
   for (const auto& [id, obj] : a.objects) {
     auto it = b.objects.find(id);
     ASSERT_NE(it, b.objects.end()) << "object " << id << " missing";
     EXPECT_EQ(obj, it->second) << "object " << id << " differs";
   }
-  if (same_format) EXPECT_EQ(a.extras, b.extras);
+  if (same_format) { EXPECT_EQ(a.extras, b.extras); }
 }
 
 std::string output_name(const std::string& input) {

@@ -29,8 +29,8 @@ using nlohmann::json;
 
 // A file of the shared reference data (../shared/datasets/cityjson/...), or of datasets/.
 inline std::string data_file(const std::string& rel) {
-  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/",
-                                 std::string(MC_SOURCE_DIR) + "/datasets/"})
+  for (const std::string& base : {std::string(MC_SOURCE_DIR) + "/../shared/datasets/cityjson/",
+                                  std::string(MC_SOURCE_DIR) + "/datasets/"})
     if (fs::exists(base + rel)) return base + rel;
   return {};
 }
@@ -255,7 +255,7 @@ json append_cube_shell(json& vertices, T x0, T size) {
 
 // ajv-cli as tools/setup-deps.sh installs it (build/node_tools), or empty when it is not there.
 inline std::string ajv_path() {
-  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/build", std::string(MC_BINARY_DIR)}) {
+  for (const std::string& base : {std::string(MC_SOURCE_DIR) + "/build", std::string(MC_BINARY_DIR)}) {
     const std::string p = base + "/node_tools/node_modules/.bin/ajv";
     if (fs::exists(p)) return p;
   }

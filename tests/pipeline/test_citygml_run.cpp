@@ -25,8 +25,8 @@ std::map<std::string, std::vector<std::string>> input_buildings(const std::strin
 
 // The project's copy (datasets/citygml) when there is one, else the shared file.
 std::string citygml(const std::string& name) {
-  for (const std::string base : {std::string(MC_SOURCE_DIR) + "/datasets/citygml/",
-                                 std::string(MC_SOURCE_DIR) + "/../shared/datasets/citygml/"})
+  for (const std::string& base : {std::string(MC_SOURCE_DIR) + "/datasets/citygml/",
+                                  std::string(MC_SOURCE_DIR) + "/../shared/datasets/citygml/"})
     if (fs::exists(base + name)) return base + name;
   return {};
 }
@@ -76,7 +76,7 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
       size_t decomposed = 0;
       for (const auto& c : b.value("children", json::array()))
         decomposed += objects.contains(c) && objects[c]["attributes"].contains("morphcut_level");
-      if (s == "ok") EXPECT_GT(decomposed, 0u) << id;
+      if (s == "ok") { EXPECT_GT(decomposed, 0u) << id; }
     }
     // Nothing but the input's buildings, their parts and the decomposition's parts.
     for (const auto& [id, obj] : objects.items())
@@ -95,8 +95,9 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
     size_t invalid_parts = 0;
     const auto v = mc::pipeline::validate_city(out, {}, [&](const mc::pipeline::ObjectReport& o) {
       const bool ours = o.id.find("-mc") != std::string::npos;
-      if (!ours)
+      if (!ours) {
         EXPECT_TRUE(o.valid()) << o.id << ": " << o.errors.front().name << ": " << o.errors.front().message;
+      }
       if (ours && !o.valid()) {
         ++invalid_parts;
         std::cout << "core defect (not this test's subject): " << o.id << ": " << o.errors.front().code << " "

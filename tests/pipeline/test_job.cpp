@@ -48,7 +48,7 @@ TEST(Job, DecomposesA3dBagBuildingIntoClosedParts) {
   // Input objects kept as they were (the original BuildingPart with its geometry).
   for (auto it = input.objects.begin(); it != input.objects.end(); ++it) {
     ASSERT_TRUE(objs.contains(it.key()));
-    if (it.key() != b.id) EXPECT_EQ(objs[it.key()], it.value());
+    if (it.key() != b.id) { EXPECT_EQ(objs[it.key()], it.value()); }
   }
   // Input vertices untouched, new ones appended.
   ASSERT_GT(b.feature.vertices.size(), input.vertices.size());

@@ -217,7 +217,7 @@ TEST(Validate, CliExitCodesAndJsonReport) {
   EXPECT_EQ(r["objects"].size(), r["counts"]["parts"].get<size_t>() + 2);  // the buildings and their parts
   for (const auto& o : r["objects"]) {
     EXPECT_TRUE(o["errors"].empty());
-    if (o["type"] == "BuildingPart") EXPECT_GT(o["volume"].get<double>(), 0);
+    if (o["type"] == "BuildingPart") { EXPECT_GT(o["volume"].get<double>(), 0); }
   }
   // Deterministic: a second run writes the same bytes (to stdout this time).
   const ProcessResult again = run_command(cli_path() + " validate " + real_output() + " --json - -q");
