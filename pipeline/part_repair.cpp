@@ -1,6 +1,7 @@
 #include "pipeline/part_repair.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <unordered_map>
 
@@ -140,6 +141,93 @@ std::vector<GridFace> triangles_of(const GridFace& f, const std::vector<Vec3>& p
   return out;
 }
 
+// Repair 0: a shell left open by the grid. Where three planes (nearly) meet in one line, the
+// carving's cells between them are slivers of zero width; rounding to the grid collapses them, so
+// a ring runs along an edge and straight back (a spike) and the faces beside it meet that edge at
+// a vertex the other face lacks (a T-junction). The spikes' tips are cut off and each unmatched
+// edge gets the part's vertices that lie on it (docs/output-format.md §Validity).
+bool on_line(const Vec3& a, const Vec3& b, const Vec3& p, double tol) {
+  const Vec3 ab = b - a;
+  const double l2 = dot(ab, ab);
+  if (!(l2 > 0)) return false;
+  return norm(cross(ab, p - a)) <= tol * std::sqrt(l2);
+}
+
+bool cut_spikes(std::vector<int64_t>& ring, const std::vector<Vec3>& pool, double tol) {
+  bool changed = false;
+  for (bool again = true; again && ring.size() >= 3;) {
+    again = false;
+    for (size_t i = 0; i < ring.size() && ring.size() >= 3; ++i) {
+      const size_t n = ring.size();
+      const int64_t a = ring[(i + n - 1) % n], b = ring[i], c = ring[(i + 1) % n];
+      const Vec3 &pa = pool[a], &pb = pool[b], &pc = pool[c];
+      const bool back = a == c || (on_line(pa, pb, pc, tol) && dot(pb - pa, pc - pb) < 0);
+      if (!back) continue;
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+      // a -> b -> a: the tip gone, a is doubled
+      if (a == c) ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i % ring.size()));
+      changed = again = true;
+      break;
+    }
+  }
+  return changed;
+}
+
+double max_abs_coordinate(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool) {
+  double m = 0;
+  for (const GridFace& f : faces)
+    for (const auto& ring : f.rings)
+      for (int64_t id : ring)
+        m = std::max({m, std::abs(pool[id].x), std::abs(pool[id].y), std::abs(pool[id].z)});
+  return m;
+}
+
+bool close_on_grid(std::vector<GridFace>& faces, const std::vector<Vec3>& pool, double tol) {
+  bool changed = false;
+  for (GridFace& f : faces) {
+    for (auto& ring : f.rings) changed |= cut_spikes(ring, pool, tol);
+    f.rings.erase(std::remove_if(f.rings.begin(), f.rings.end(), [](const auto& r) { return r.size() < 3; }),
+                  f.rings.end());
+  }
+  faces.erase(std::remove_if(faces.begin(), faces.end(), [](const GridFace& f) { return f.rings.empty(); }),
+              faces.end());
+  std::set<int64_t> used;
+  for (const GridFace& f : faces)
+    for (const auto& ring : f.rings) used.insert(ring.begin(), ring.end());
+  for (int round = 0; round < 4; ++round) {
+    std::set<std::pair<int64_t, int64_t>> edges;
+    for (const GridFace& f : faces)
+      for (const auto& ring : f.rings)
+        for (size_t i = 0; i < ring.size(); ++i) edges.emplace(ring[i], ring[(i + 1) % ring.size()]);
+    bool inserted = false;
+    for (GridFace& f : faces)
+      for (auto& ring : f.rings) {
+        std::vector<int64_t> next;
+        for (size_t i = 0; i < ring.size(); ++i) {
+          const int64_t u = ring[i], v = ring[(i + 1) % ring.size()];
+          next.push_back(u);
+          if (edges.count({v, u})) continue;
+          const Vec3 &pu = pool[u], &pv = pool[v];
+          const Vec3 d = pv - pu;
+          const double l2 = dot(d, d);
+          std::vector<std::pair<double, int64_t>> on;
+          for (int64_t w : used) {
+            if (w == u || w == v) continue;
+            const double t = dot(pool[w] - pu, d) / l2;
+            if (t > 0 && t < 1 && on_line(pu, pv, pool[w], tol)) on.emplace_back(t, w);
+          }
+          std::sort(on.begin(), on.end());
+          for (const auto& [t, w] : on) next.push_back(w);
+          inserted |= !on.empty();
+        }
+        ring = std::move(next);
+      }
+    if (!inserted) break;
+    changed = true;
+  }
+  return changed;
+}
+
 // Faces of a rule that no change of the face alone can fix (vertices within the snap distance):
 // those need the level's vertices clustered.
 bool face_repairable(int code) {
@@ -184,11 +272,10 @@ std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vec
   return defect;
 }
 
-PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool) {
-  PartRepair r;
-  r.faces = std::move(faces);
-  SolidCheck c;
-  r.defect = grid_solid_defect(r.faces, pool, &c);
+namespace {
+
+// Repairs 1 and 2 on the faces val3dity's rules name, two rounds, checked after each.
+void repair_faces(PartRepair& r, SolidCheck& c, const std::vector<Vec3>& pool) {
   for (int round = 0; round < 2 && !r.defect.empty(); ++round) {
     std::set<size_t> bad;
     for (const auto& [fi, code] : c.bad_faces)
@@ -217,6 +304,30 @@ PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>
     r.faces = std::move(next);
     r.defect = grid_solid_defect(r.faces, pool, &c);
   }
+}
+
+}  // namespace
+
+PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool) {
+  PartRepair r;
+  r.faces = std::move(faces);
+  SolidCheck c;
+  r.defect = grid_solid_defect(r.faces, pool, &c);
+  if (r.defect.empty()) return r;
+  std::vector<GridFace> original = r.faces;
+  repair_faces(r, c, pool);
+  if (r.defect.empty()) return r;
+  // Repair 0, when the face repairs alone leave the part invalid: the shell closed on the grid
+  // first (spikes cut, T-junctions filled; exact collinearity up to the doubles' rounding of grid
+  // coordinates), then the face repairs again.
+  if (!close_on_grid(original, pool, 1e-12 * (1 + max_abs_coordinate(original, pool)))) return r;
+  PartRepair closed;
+  closed.faces = std::move(original);
+  closed.repaired = true;
+  SolidCheck cc;
+  closed.defect = grid_solid_defect(closed.faces, pool, &cc);
+  repair_faces(closed, cc, pool);
+  if (closed.defect.empty()) return closed;
   return r;
 }
 

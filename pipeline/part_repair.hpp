@@ -5,8 +5,11 @@
 //      the face become faces of their own, loops turning against it become holes);
 //   2. a face that is not planar enough (distance 203, normals 204) or whose ring is still not
 //      simple is replaced by its triangles (constrained Delaunay in its plane);
-// then the part is checked again. A part that still fails is left to the caller, which clusters
-// the level's vertices more coarsely and encodes it again (pipeline/job.cpp).
+// then the part is checked again. When it still fails, the shell is first closed on the grid (a
+// sliver the rounding collapsed leaves a ring that runs along an edge and back, and a T-junction
+// beside it: the spike is cut and the vertex put into the edge) and repairs 1 and 2 run again. A part that
+// still fails is left to the caller, which clusters the level's vertices more coarsely and encodes it again
+// (pipeline/job.cpp).
 #pragma once
 #include <string>
 #include <vector>
