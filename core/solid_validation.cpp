@@ -98,40 +98,6 @@ class ErrorLog {
   std::map<int, size_t> count_;
 };
 
-// Vertices within `snap` of each other become one (grid hashing, neighbouring cells searched).
-std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged) {
-  const double cell = std::max(snap, 1e-12);
-  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
-  auto key = [](int64_t x, int64_t y, int64_t z) {
-    return (static_cast<uint64_t>(x) * 73856093u) ^ (static_cast<uint64_t>(y) * 19349663u) ^
-           (static_cast<uint64_t>(z) * 83492791u);
-  };
-  std::vector<uint32_t> id(v.size());
-  for (size_t i = 0; i < v.size(); ++i) {
-    const int64_t cx = std::llround(v[i].x / cell), cy = std::llround(v[i].y / cell),
-                  cz = std::llround(v[i].z / cell);
-    int64_t found = -1;
-    for (int dx = -1; dx <= 1 && found < 0; ++dx)
-      for (int dy = -1; dy <= 1 && found < 0; ++dy)
-        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
-          auto it = grid.find(key(cx + dx, cy + dy, cz + dz));
-          if (it == grid.end()) continue;
-          for (uint32_t m : it->second)
-            if (norm(merged[m] - v[i]) <= snap) {
-              found = m;
-              break;
-            }
-        }
-    if (found < 0) {
-      found = static_cast<int64_t>(merged.size());
-      merged.push_back(v[i]);
-      grid[key(cx, cy, cz)].push_back(static_cast<uint32_t>(found));
-    }
-    id[i] = static_cast<uint32_t>(found);
-  }
-  return id;
-}
-
 // Least-squares plane of points: centroid and the covariance's smallest eigenvector.
 Plane fit_plane(const std::vector<Vec3>& pts) {
   Vec3 c;
@@ -394,6 +360,39 @@ void check_vertex_fans(const std::vector<std::array<uint32_t, 3>>& triangles, co
 }
 
 }  // namespace
+
+std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged) {
+  const double cell = std::max(snap, 1e-12);
+  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+  auto key = [](int64_t x, int64_t y, int64_t z) {
+    return (static_cast<uint64_t>(x) * 73856093u) ^ (static_cast<uint64_t>(y) * 19349663u) ^
+           (static_cast<uint64_t>(z) * 83492791u);
+  };
+  std::vector<uint32_t> id(v.size());
+  for (size_t i = 0; i < v.size(); ++i) {
+    const int64_t cx = std::llround(v[i].x / cell), cy = std::llround(v[i].y / cell),
+                  cz = std::llround(v[i].z / cell);
+    int64_t found = -1;
+    for (int dx = -1; dx <= 1 && found < 0; ++dx)
+      for (int dy = -1; dy <= 1 && found < 0; ++dy)
+        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+          auto it = grid.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == grid.end()) continue;
+          for (uint32_t m : it->second)
+            if (norm(merged[m] - v[i]) <= snap) {
+              found = m;
+              break;
+            }
+        }
+    if (found < 0) {
+      found = static_cast<int64_t>(merged.size());
+      merged.push_back(v[i]);
+      grid[key(cx, cy, cz)].push_back(static_cast<uint32_t>(found));
+    }
+    id[i] = static_cast<uint32_t>(found);
+  }
+  return id;
+}
 
 const char* solid_error_name(int code) {
   switch (code) {

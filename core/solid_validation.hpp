@@ -41,6 +41,10 @@ struct SolidTolerances {
 };
 // val3dity's default tolerances, made slightly stricter where it decides by a strict comparison
 // on rounded coordinates: vertices up to 1 mm apart are one vertex. Every written part passes them.
+// Vertices within `snap` of each other become one (grid hashing, neighbouring cells searched), in
+// the order given: returns each vertex's merged index; `merged` gets the merged positions.
+std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged);
+
 inline SolidTolerances val3dity_tolerances() { return {0.001 * (1 + 1e-6), 0.01, 20}; }
 
 // The shell as triangles over merged vertices (faces triangulated in their plane, holes kept),

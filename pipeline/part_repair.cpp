@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <unordered_map>
 
@@ -141,11 +142,13 @@ std::vector<GridFace> triangles_of(const GridFace& f, const std::vector<Vec3>& p
   return out;
 }
 
-// Repair 0: a shell left open by the grid. Where three planes (nearly) meet in one line, the
-// carving's cells between them are slivers of zero width; rounding to the grid collapses them, so
-// a ring runs along an edge and straight back (a spike) and the faces beside it meet that edge at
-// a vertex the other face lacks (a T-junction). The spikes' tips are cut off and each unmatched
-// edge gets the part's vertices that lie on it (docs/output-format.md §Validity).
+// Repair 0: a shell the grid left open. Where planes (nearly) meet in one line or point, the
+// carving's cells between them are slivers; rounding to the grid collapses them below val3dity's
+// snap distance, where two vertices are one. A ring then repeats a vertex (102), runs along an edge
+// and straight back (a spike), or keeps two distinct points (101), and the faces beside the sliver
+// meet an edge at a vertex the other face lacks (a T-junction, 302). The rings are cleaned as
+// val3dity sees them (vertices within the snap distance are one) and each unmatched edge gets the
+// part's vertices that lie on it (docs/output-format.md §Validity).
 bool on_line(const Vec3& a, const Vec3& b, const Vec3& p, double tol) {
   const Vec3 ab = b - a;
   const double l2 = dot(ab, ab);
@@ -153,19 +156,21 @@ bool on_line(const Vec3& a, const Vec3& b, const Vec3& p, double tol) {
   return norm(cross(ab, p - a)) <= tol * std::sqrt(l2);
 }
 
-bool cut_spikes(std::vector<int64_t>& ring, const std::vector<Vec3>& pool, double tol) {
+// `same[i]`: the vertex (merged) that ring entry i is to val3dity; `at(m)` its position.
+bool clean_ring(std::vector<int64_t>& ring, const std::function<uint32_t(int64_t)>& same,
+                const std::function<const Vec3&(uint32_t)>& at, double tol) {
   bool changed = false;
-  for (bool again = true; again && ring.size() >= 3;) {
+  for (bool again = true; again && ring.size() >= 2;) {
     again = false;
-    for (size_t i = 0; i < ring.size() && ring.size() >= 3; ++i) {
+    for (size_t i = 0; i < ring.size() && ring.size() >= 2; ++i) {
       const size_t n = ring.size();
-      const int64_t a = ring[(i + n - 1) % n], b = ring[i], c = ring[(i + 1) % n];
-      const Vec3 &pa = pool[a], &pb = pool[b], &pc = pool[c];
-      const bool back = a == c || (on_line(pa, pb, pc, tol) && dot(pb - pa, pc - pb) < 0);
-      if (!back) continue;
+      const uint32_t a = same(ring[(i + n - 1) % n]), b = same(ring[i]), c = same(ring[(i + 1) % n]);
+      // b repeats a (one vertex to val3dity), or is the tip of a spike a -> b -> back towards a
+      bool drop = a == b;
+      if (!drop && n >= 3)
+        drop = a == c || (on_line(at(a), at(b), at(c), tol) && dot(at(b) - at(a), at(c) - at(b)) < 0);
+      if (!drop) continue;
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-      // a -> b -> a: the tip gone, a is doubled
-      if (a == c) ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i % ring.size()));
       changed = again = true;
       break;
     }
@@ -173,51 +178,61 @@ bool cut_spikes(std::vector<int64_t>& ring, const std::vector<Vec3>& pool, doubl
   return changed;
 }
 
-double max_abs_coordinate(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool) {
-  double m = 0;
-  for (const GridFace& f : faces)
-    for (const auto& ring : f.rings)
-      for (int64_t id : ring)
-        m = std::max({m, std::abs(pool[id].x), std::abs(pool[id].y), std::abs(pool[id].z)});
-  return m;
-}
-
-bool close_on_grid(std::vector<GridFace>& faces, const std::vector<Vec3>& pool, double tol) {
+bool close_on_grid(std::vector<GridFace>& faces, const std::vector<Vec3>& pool, double snap) {
+  // The vertices merged as check_solid merges them: same order (as_mesh), same snap distance.
+  const LocalMesh m = as_mesh(faces, pool);
+  std::vector<Vec3> merged;
+  const std::vector<uint32_t> mid = merge_vertices(m.mesh.vertices, snap, merged);
+  std::unordered_map<int64_t, uint32_t> merged_of;
+  std::vector<int64_t> first_id(merged.size(), -1);  // a pool id of each merged vertex
+  for (size_t i = 0; i < mid.size(); ++i) {
+    merged_of.emplace(m.pool_id[i], mid[i]);
+    if (first_id[mid[i]] < 0) first_id[mid[i]] = m.pool_id[i];
+  }
+  const std::function<uint32_t(int64_t)> same = [&](int64_t id) { return merged_of.at(id); };
+  const std::function<const Vec3&(uint32_t)> at = [&](uint32_t v) -> const Vec3& { return merged[v]; };
   bool changed = false;
   for (GridFace& f : faces) {
-    for (auto& ring : f.rings) changed |= cut_spikes(ring, pool, tol);
-    f.rings.erase(std::remove_if(f.rings.begin(), f.rings.end(), [](const auto& r) { return r.size() < 3; }),
-                  f.rings.end());
+    for (auto& ring : f.rings) changed |= clean_ring(ring, same, at, snap);
+    std::vector<std::vector<int64_t>> kept;
+    for (size_t r = 0; r < f.rings.size(); ++r) {
+      std::set<uint32_t> distinct;
+      for (int64_t id : f.rings[r]) distinct.insert(same(id));
+      if (distinct.size() >= 3) kept.push_back(std::move(f.rings[r]));
+      else if (r == 0) break;  // the outer ring collapsed: the face is gone
+    }
+    changed |= kept.size() != f.rings.size();
+    f.rings = std::move(kept);
   }
   faces.erase(std::remove_if(faces.begin(), faces.end(), [](const GridFace& f) { return f.rings.empty(); }),
               faces.end());
-  std::set<int64_t> used;
-  for (const GridFace& f : faces)
-    for (const auto& ring : f.rings) used.insert(ring.begin(), ring.end());
   for (int round = 0; round < 4; ++round) {
-    std::set<std::pair<int64_t, int64_t>> edges;
+    std::set<std::pair<uint32_t, uint32_t>> edges;
+    std::set<uint32_t> used;
     for (const GridFace& f : faces)
       for (const auto& ring : f.rings)
-        for (size_t i = 0; i < ring.size(); ++i) edges.emplace(ring[i], ring[(i + 1) % ring.size()]);
+        for (size_t i = 0; i < ring.size(); ++i) {
+          edges.emplace(same(ring[i]), same(ring[(i + 1) % ring.size()]));
+          used.insert(same(ring[i]));
+        }
     bool inserted = false;
     for (GridFace& f : faces)
       for (auto& ring : f.rings) {
         std::vector<int64_t> next;
         for (size_t i = 0; i < ring.size(); ++i) {
-          const int64_t u = ring[i], v = ring[(i + 1) % ring.size()];
-          next.push_back(u);
+          const uint32_t u = same(ring[i]), v = same(ring[(i + 1) % ring.size()]);
+          next.push_back(ring[i]);
           if (edges.count({v, u})) continue;
-          const Vec3 &pu = pool[u], &pv = pool[v];
-          const Vec3 d = pv - pu;
+          const Vec3 d = at(v) - at(u);
           const double l2 = dot(d, d);
-          std::vector<std::pair<double, int64_t>> on;
-          for (int64_t w : used) {
+          std::vector<std::pair<double, uint32_t>> on;
+          for (uint32_t w : used) {
             if (w == u || w == v) continue;
-            const double t = dot(pool[w] - pu, d) / l2;
-            if (t > 0 && t < 1 && on_line(pu, pv, pool[w], tol)) on.emplace_back(t, w);
+            const double t = dot(at(w) - at(u), d) / l2;
+            if (t > 0 && t < 1 && on_line(at(u), at(v), at(w), snap)) on.emplace_back(t, w);
           }
           std::sort(on.begin(), on.end());
-          for (const auto& [t, w] : on) next.push_back(w);
+          for (const auto& [t, w] : on) next.push_back(first_id[w]);
           inserted |= !on.empty();
         }
         ring = std::move(next);
@@ -318,9 +333,9 @@ PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>
   repair_faces(r, c, pool);
   if (r.defect.empty()) return r;
   // Repair 0, when the face repairs alone leave the part invalid: the shell closed on the grid
-  // first (spikes cut, T-junctions filled; exact collinearity up to the doubles' rounding of grid
-  // coordinates), then the face repairs again.
-  if (!close_on_grid(original, pool, 1e-12 * (1 + max_abs_coordinate(original, pool)))) return r;
+  // first (rings cleaned as val3dity merges their vertices, T-junctions filled), then the face
+  // repairs again.
+  if (!close_on_grid(original, pool, val3dity_tolerances().snap)) return r;
   PartRepair closed;
   closed.faces = std::move(original);
   closed.repaired = true;
