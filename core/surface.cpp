@@ -160,19 +160,37 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
     raw.push_back(std::move(rf));
   }
   // 3. Drop vertices that lie in the middle of a straight edge shared by exactly two faces.
+  //    Both edges at such a vertex lying on the same two planes, clearly not parallel, are on
+  //    those planes' line: collinear without exact arithmetic (the complex's facets lie exactly
+  //    on their planes).
+  //    Otherwise the exact predicate decides (a bend between two faces of one plane).
   std::unordered_map<uint32_t, std::vector<uint32_t>> nbrs;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> edge_planes;  // undirected edge -> face planes
   for (const auto& rf : raw)
     for (const auto& loop : rf.loops)
       for (size_t i = 0; i < loop.size(); ++i) {
         const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
         nbrs[a].push_back(b);
         nbrs[b].push_back(a);
+        edge_planes[directed(std::min(a, b), std::max(a, b))].push_back(rf.plane);
       }
+  auto on_two_common_planes = [&](uint32_t a, uint32_t v, uint32_t b) {
+    const auto& p = edge_planes[directed(std::min(a, v), std::max(a, v))];
+    const auto& q = edge_planes[directed(std::min(v, b), std::max(v, b))];
+    uint32_t first = CellComplex::kNone;
+    for (uint32_t x : p)
+      if (std::find(q.begin(), q.end(), x) != q.end()) {
+        if (first == CellComplex::kNone) first = x;
+        else if (x != first && norm(cross(cx.planes()[x].n, cx.planes()[first].n)) > 1e-9) return true;
+      }
+    return false;
+  };
   std::unordered_set<uint32_t> drop;
   for (auto& [v, ns] : nbrs) {
     std::sort(ns.begin(), ns.end());
     ns.erase(std::unique(ns.begin(), ns.end()), ns.end());
-    if (ns.size() == 2 && cx.collinear(ns[0], v, ns[1]) && !(level.keep && level.keep->count(v)))
+    if (ns.size() == 2 && !(level.keep && level.keep->count(v)) &&
+        (on_two_common_planes(ns[0], v, ns[1]) || cx.collinear(ns[0], v, ns[1])))
       drop.insert(v);
   }
   s.dropped.assign(drop.begin(), drop.end());
