@@ -178,6 +178,7 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
 // edges around a chamfer add up into one stronger line.
 void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
   std::vector<size_t> cand;
+  std::vector<std::pair<uint32_t, size_t>> by_plane;
   // After a merge at (i, j) the scan starts again from the first pair, but every pair of lines
   // that were both there before and whose first line came before i was found not to merge (a
   // pure function of the two lines): those rows only look at the new lines (from `first_new`).
@@ -186,16 +187,17 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
     bool merged = false;
     // Only lines sharing a plane can merge: index them by plane (ascending positions, so the
     // first mergeable pair in (i, j) order is the same as a scan of all pairs would find).
-    std::unordered_map<uint32_t, std::vector<size_t>> by_plane;
+    by_plane.clear();  // (plane, line), sorted
     for (size_t k = 0; k < lines.size(); ++k) {
-      by_plane[lines[k].line.p1].push_back(k);
-      by_plane[lines[k].line.p2].push_back(k);
+      by_plane.emplace_back(lines[k].line.p1, k);
+      by_plane.emplace_back(lines[k].line.p2, k);
     }
+    std::sort(by_plane.begin(), by_plane.end());
     for (size_t i = 0; i < lines.size() && !merged; ++i) {
       cand.clear();
       for (uint32_t pl : {lines[i].line.p1, lines[i].line.p2}) {
-        const auto& v = by_plane[pl];
-        cand.insert(cand.end(), std::upper_bound(v.begin(), v.end(), i), v.end());
+        auto lo = std::upper_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, i});
+        for (; lo != by_plane.end() && lo->first == pl; ++lo) cand.push_back(lo->second);
       }
       std::sort(cand.begin(), cand.end());
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());

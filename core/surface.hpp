@@ -47,34 +47,43 @@ std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_use
 // faces using the edge; `face_of` maps an element of those lists to a face id. Sorted.
 template <class Uses, class FaceOf>
 std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
-  // Union-find over the (vertex, face) incidences, held in one sorted array (this runs for every
-  // part the search analyses: no node-based map).
+  // The (vertex, face) incidences and, for each edge used by exactly two faces, the two faces it
+  // joins at each of its ends, both ordered by vertex: each vertex's fans are then found among
+  // its own few faces (this runs for every part the search analyses: flat arrays, no maps).
+  struct Join {
+    uint32_t v, f1, f2;
+  };
   std::vector<uint64_t> node;  // vertex << 32 | face, sorted, unique
+  std::vector<Join> joins;
   for (const auto& [key, inc] : uses)
-    for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)})
+    for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)}) {
       for (const auto& x : inc) node.push_back((uint64_t(v) << 32) | face_of(x));
+      if (inc.size() == 2) joins.push_back({v, face_of(inc[0]), face_of(inc[1])});
+    }
   std::sort(node.begin(), node.end());
   node.erase(std::unique(node.begin(), node.end()), node.end());
-  UnionFind fans(node.size());
-  auto id = [&](uint32_t v, uint32_t f) {
-    return static_cast<uint32_t>(std::lower_bound(node.begin(), node.end(), (uint64_t(v) << 32) | f) -
-                                 node.begin());
-  };
-  for (const auto& [key, inc] : uses) {
-    if (inc.size() != 2) continue;
-    for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)})
-      fans.link(id(v, face_of(inc[0])), id(v, face_of(inc[1])));
-  }
+  std::sort(joins.begin(), joins.end(), [](const Join& a, const Join& b) { return a.v < b.v; });
   std::vector<uint32_t> out;
-  uint32_t last = UINT32_MAX, root = UINT32_MAX;
-  for (uint32_t i = 0; i < node.size(); ++i) {  // ordered by vertex
-    const uint32_t v = static_cast<uint32_t>(node[i] >> 32), r = fans.find(i);
-    if (v != last) {
-      last = v;
-      root = r;
-    } else if (r != root && (out.empty() || out.back() != v)) {
-      out.push_back(v);
+  UnionFind fans;
+  size_t j = 0;
+  for (size_t i = 0; i < node.size();) {
+    const uint32_t v = static_cast<uint32_t>(node[i] >> 32);
+    size_t e = i + 1;
+    while (e < node.size() && static_cast<uint32_t>(node[e] >> 32) == v) ++e;
+    while (j < joins.size() && joins[j].v < v) ++j;
+    if (e - i > 1) {
+      fans.reset(e - i);
+      auto local = [&](uint32_t f) {
+        return static_cast<uint32_t>(
+            std::lower_bound(node.begin() + i, node.begin() + e, (uint64_t(v) << 32) | f) -
+            (node.begin() + i));
+      };
+      for (; j < joins.size() && joins[j].v == v; ++j) fans.link(local(joins[j].f1), local(joins[j].f2));
+      size_t roots = 0;
+      for (uint32_t x = 0; x < fans.size(); ++x) roots += fans.is_root(x);
+      if (roots > 1) out.push_back(v);
     }
+    i = e;
   }
   return out;
 }

@@ -13,6 +13,12 @@ class UnionFind {
  public:
   explicit UnionFind(size_t n = 0) : parent_(n) { std::iota(parent_.begin(), parent_.end(), uint32_t{0}); }
   size_t size() const { return parent_.size(); }
+  // n singletons again, reusing the storage (for many small questions in a row).
+  void reset(size_t n) {
+    parent_.resize(n);
+    std::iota(parent_.begin(), parent_.end(), uint32_t{0});
+  }
+  bool is_root(uint32_t x) const { return parent_[x] == x; }
   uint32_t find(uint32_t x) {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
     return x;
