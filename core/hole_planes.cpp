@@ -81,7 +81,8 @@ std::vector<HolePlane> hole_planes(const PolygonMesh& mesh, double dist, double 
     for (uint32_t v : loop) worst = std::max(worst, std::abs(h.plane.signed_distance(mesh.vertices[v])));
     if (worst > dist) continue;
     if (h.bbox.hi.z - lowest_z <= dist) continue;  // the open bottom: the ground plane caps it
-    out.push_back(h);
+    for (uint32_t v : loop) h.loop.push_back(mesh.vertices[v]);
+    out.push_back(std::move(h));
   }
   return out;
 }

@@ -14,8 +14,9 @@ namespace mc {
 
 struct HolePlane {
   Plane plane;
-  BBox bbox;    // of the loop's vertices
-  double area;  // enclosed by the loop
+  BBox bbox;               // of the loop's vertices
+  double area;             // enclosed by the loop
+  std::vector<Vec3> loop;  // the loop's vertices in order (empty for planes not from a loop)
 };
 
 // `mesh` must be cleaned (clean_soup: shared vertices welded). Edges used by exactly one face

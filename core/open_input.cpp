@@ -1,8 +1,11 @@
 #include "core/open_input.hpp"
 
+#include "core/solid_validation.hpp"  // triangulate_polygon
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <unordered_map>
 
 namespace mc {
@@ -126,7 +129,7 @@ std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, 
     b.hi = b.hi + Vec3{dist, dist, 0};
     b.lo.z = z_lo;
     b.hi.z = z_hi;
-    out.push_back({g.plane, b, 0.0});
+    out.push_back({g.plane, b, 0.0, {}});
   }
   return out;
 }
@@ -152,6 +155,39 @@ std::vector<uint8_t> cover_triangles(const TriangleSoup& soup, const PolygonMesh
         cross(soup.vertices[t[1]] - soup.vertices[t[0]], soup.vertices[t[2]] - soup.vertices[t[0]]);
     const double l = norm(n);
     out[i] = l > 0 && std::abs(n.z) >= 0.05 * l;
+  }
+  return out;
+}
+
+TriangleSoup open_bottoms(const std::vector<HolePlane>& holes, const VerticalOracle& cover,
+                          const VerticalOracle& surface, double dist, double angle_rad) {
+  TriangleSoup out;
+  const double cos_a = std::cos(angle_rad);
+  for (const HolePlane& h : holes) {
+    if (h.loop.size() < 3 || std::abs(h.plane.n.z) < cos_a) continue;
+    std::vector<uint32_t> ring(h.loop.size());
+    std::iota(ring.begin(), ring.end(), uint32_t{0});
+    std::vector<std::array<uint32_t, 3>> tris;
+    if (!triangulate_polygon({ring}, h.loop, tris) || tris.empty()) continue;
+    // A point inside the loop: its largest triangle's centroid.
+    size_t best = 0;
+    double largest = -1;
+    for (size_t i = 0; i < tris.size(); ++i) {
+      const Vec3 &a = h.loop[tris[i][0]], &b = h.loop[tris[i][1]], &c = h.loop[tris[i][2]];
+      const double area = norm(cross(b - a, c - a));
+      if (area > largest) largest = area, best = i;
+    }
+    const Vec3 c = (h.loop[tris[best][0]] + h.loop[tris[best][1]] + h.loop[tris[best][2]]) / 3.0;
+    bool below = false, above = false;
+    for (double z : cover.crossings(c.x, c.y)) above |= z > c.z + dist;
+    for (double z : surface.crossings(c.x, c.y)) below |= z < c.z - dist;
+    if (below || !above) continue;
+    const uint32_t base = static_cast<uint32_t>(out.vertices.size());
+    out.vertices.insert(out.vertices.end(), h.loop.begin(), h.loop.end());
+    for (const auto& t : tris) {
+      out.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+      out.source_face.push_back(UINT32_MAX);
+    }
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/hole_planes.hpp"
+#include "core/oracle.hpp"
 #include "core/plane.hpp"
 #include "core/polygon_mesh.hpp"
 #include "core/soup.hpp"
@@ -46,6 +47,16 @@ std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, 
 // outer surfaces yes; WallSurface, ClosureSurface, FloorSurface, CeilingSurface, InteriorWallSurface
 // no), else geometry (not within ~3° of vertical).
 std::vector<uint8_t> cover_triangles(const TriangleSoup& soup, const PolygonMesh& mesh);
+
+// Floors of parts whose ground is missing above the building's lowest level (walls that start
+// higher up, as on a slope; docs/algorithm.md §6.4): the hole loops (core/hole_planes) that are
+// horizontal (within `angle_rad`) with a surface of `cover` (the vote's roofs and grounds) above
+// their inside and no surface of `surface` (every input triangle, walls too) below it. Returned
+// as triangles, for the vertical vote to count as ground faces: without them every column stands
+// on the lowest height and a part on higher ground gains the air beneath it. (A storey junction
+// over an inclined wall, as in a tower of inclined prisms, has that wall below it: no floor.)
+TriangleSoup open_bottoms(const std::vector<HolePlane>& holes, const VerticalOracle& cover,
+                          const VerticalOracle& surface, double dist, double angle_rad);
 
 // |signed volume| of the soup when it is closed and consistently oriented (every edge traversed
 // as often in each direction); -1 otherwise.

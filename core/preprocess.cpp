@@ -1,6 +1,7 @@
 #include "core/preprocess.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 
@@ -99,7 +100,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   if (p.snap_corners)
     out.anchored_planes = snap_corners(mesh, regions, region_plane, *out.planes, 0.1 * out.dist);
   // Planes of the input's holes (missing faces), after the regions; a virtual face.
-  for (const HolePlane& h : hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z)) {
+  const std::vector<HolePlane> holes = hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z);
+  for (const HolePlane& h : holes) {
     add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"));
     ++out.hole_planes;
   }
@@ -187,7 +189,35 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   oracle.set_valid_solid(out.fast_path);
   oracle.set_merge_distance(out.dist);
   oracle.set_enclosure(p.fill_enclosed);
-  const VerticalOracle vertical(osoup, cover_triangles(osoup, omesh), out.dist, ground_z);
+  const std::vector<uint8_t> cover = cover_triangles(osoup, omesh);
+  const VerticalOracle vertical_input(osoup, cover, out.dist, ground_z);
+  // Floors of parts whose ground is missing above the lowest level count as ground faces of the
+  // vertical vote (docs/algorithm.md §6.4).
+  std::optional<VerticalOracle> vertical_floors;
+  const bool horizontal_holes = std::any_of(holes.begin(), holes.end(), [&](const HolePlane& h) {
+    return h.loop.size() >= 3 && std::abs(h.plane.n.z) >= std::cos(out.angle_rad);
+  });
+  std::optional<VerticalOracle> all_surfaces;  // every triangle, walls too: what lies below a hole
+  if (horizontal_holes)
+    all_surfaces.emplace(osoup, std::vector<uint8_t>(osoup.triangles.size(), 1), out.dist, ground_z);
+  if (const TriangleSoup floors =
+          horizontal_holes ? open_bottoms(holes, vertical_input, *all_surfaces, out.dist, out.angle_rad)
+                           : TriangleSoup{};
+      !floors.triangles.empty()) {
+    TriangleSoup with = osoup;
+    std::vector<uint8_t> with_cover = cover;
+    with_cover.resize(with.triangles.size(), 0);
+    const uint32_t base = static_cast<uint32_t>(with.vertices.size());
+    with.vertices.insert(with.vertices.end(), floors.vertices.begin(), floors.vertices.end());
+    for (const auto& t : floors.triangles) {
+      with.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+      with.source_face.push_back(UINT32_MAX);
+      with_cover.push_back(1);
+    }
+    vertical_floors.emplace(with, with_cover, out.dist, ground_z);
+    out.open_bottom_triangles = floors.triangles.size();
+  }
+  const VerticalOracle& vertical = vertical_floors ? *vertical_floors : vertical_input;
 
   CarveParams cp;
   cp.cell_size = out.cell_size;

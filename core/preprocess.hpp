@@ -64,6 +64,9 @@ struct Preprocessed {
   bool ground_from_terrain = false;  // the ground level came from terrain_z (roofs-only model)
   double open_boundary_length = 0;
   size_t boundary_wall_planes = 0;
+  // Triangles of the floors added to the vertical vote where a part's ground is missing above the
+  // lowest level (core/open_input.hpp: open_bottoms).
+  size_t open_bottom_triangles = 0;
   VolumeCheck volume_check;
   // The input is a valid solid and the labelling took the fast path (docs/algorithm.md §6.6);
   // otherwise why not (the first validity error, "open input", or "fast path off").

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/params.hpp"
+#include "core/open_input.hpp"
 #include "core/preprocess.hpp"
 #include "io/cityjson.hpp"
 #include "io/cityjson_building.hpp"
@@ -251,6 +252,82 @@ TEST(OpenModels, ThreeDBagVariantsKeepTheOriginalVolume) {
     }
   }
   fs::remove_all(dir);
+}
+
+// Real data: a DH building of three parts on a slope whose walls start at 5.76, 6.06 and 6.16 m,
+// with its ground surfaces removed (variant c). Without floors the vertical vote stood every
+// column on the lowest height, and the two higher parts gained the air beneath them (+2.2 % of
+// the closed original's volume); the open bottoms above the lowest level are now its floors.
+TEST(OpenModels, PartsOnHigherGroundWithoutAGroundStandOnTheirWalls) {
+  const std::string file = source("../shared/datasets/cityjson/upgraded-2.0/DH_01_subs.v20.city.json");
+  if (!fs::exists(file)) GTEST_SKIP() << "shared data not found: " << file;
+  const fs::path dir = fs::path(MC_BINARY_DIR) / ("open_bottoms_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + file + " " +
+                          dir.string() + " --seed 19 --variants c --no-ajv > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::string id = "GUID_13974D93-CB4F-4B5A-AB1E-577DD9928CF2";
+  const double ref = only_volume(cells_of(file, {id}));
+  io::CityJsonReader r((dir / "DH_01_subs.v20.c.city.json").string());
+  io::Feature f;
+  bool found = false;
+  while (r.next(f)) {
+    if (f.id != id) continue;
+    found = true;
+    const Preprocessed pre =
+        preprocess(io::extract_building(f, r.header()).mesh, {}, Clock::time_point::max());
+    double volume = 0;
+    for (const auto& comp : pre.components) volume += comp.volume;
+    EXPECT_TRUE(pre.open_input);
+    EXPECT_GT(pre.open_bottom_triangles, 0u);
+    EXPECT_NEAR(volume / ref, 1.0, 0.01);
+    EXPECT_NEAR(pre.volume_check.estimate / ref, 1.0, 0.01);
+  }
+  EXPECT_TRUE(found);
+  fs::remove_all(dir);
+}
+
+// The floors of the vertical vote: a horizontal hole with a roof above its inside and nothing
+// below is an open bottom; with a ground below (the gap under walls that stop short of it) or
+// with nothing above (a missing flat roof) it is not.
+TEST(OpenModels, OpenBottomsAreHolesWithARoofAboveAndNothingBelow) {
+  auto square = [](double z) { return std::vector<Vec3>{{0, 0, z}, {10, 0, z}, {10, 10, z}, {0, 10, z}}; };
+  auto soup_of = [&](const std::vector<double>& heights) {
+    TriangleSoup s;
+    for (double z : heights) {
+      const uint32_t b = static_cast<uint32_t>(s.vertices.size());
+      for (const Vec3& v : square(z)) s.vertices.push_back(v);
+      s.triangles.push_back({b, b + 1, b + 2});
+      s.triangles.push_back({b, b + 2, b + 3});
+    }
+    s.source_face.assign(s.triangles.size(), 0);
+    return s;
+  };
+  auto hole_at = [&](double z) {
+    HolePlane h;
+    h.plane = {{0, 0, 1}, -z};
+    for (const Vec3& v : square(z)) h.bbox.add(v), h.loop.push_back(v);
+    h.area = 100;
+    return h;
+  };
+  const double angle = 10 * M_PI / 180;
+  {  // roof at 5, walls from 0.3, no ground: the floor at 0.3
+    const TriangleSoup roof = soup_of({5});
+    const VerticalOracle v(roof, std::vector<uint8_t>(roof.triangles.size(), 1), 0.01, 0.3);
+    const TriangleSoup floors = open_bottoms({hole_at(0.3)}, v, v, 0.01, angle);
+    EXPECT_EQ(floors.triangles.size(), 2u);
+    for (const Vec3& p : floors.vertices) EXPECT_DOUBLE_EQ(p.z, 0.3);
+  }
+  {  // the same with a ground at 0: the gap under the walls, no floor
+    const TriangleSoup both = soup_of({0, 5});
+    const VerticalOracle v(both, std::vector<uint8_t>(both.triangles.size(), 1), 0.01, 0);
+    EXPECT_TRUE(open_bottoms({hole_at(0.3)}, v, v, 0.01, angle).triangles.empty());
+  }
+  {  // a missing flat roof at 5 over a ground: no floor
+    const TriangleSoup ground = soup_of({0});
+    const VerticalOracle v(ground, std::vector<uint8_t>(ground.triangles.size(), 1), 0.01, 0);
+    EXPECT_TRUE(open_bottoms({hole_at(5)}, v, v, 0.01, angle).triangles.empty());
+  }
 }
 
 }  // namespace
