@@ -307,18 +307,22 @@ TEST(PartRepair, RealBuildingsThatFailedVal3dityAreWrittenValid) {
   EXPECT_GT(split, 0u);
 }
 
+// The one building of tests/pipeline/data/`name`, run with the default configuration.
+BuildingOutcome run_the_building(const std::string& name) {
+  mc::io::Header h;
+  auto features = read_some(std::string(MC_SOURCE_DIR) + "/tests/pipeline/data/" + name, h);
+  EXPECT_EQ(features.size(), 1u);
+  if (features.empty()) return {};
+  return run_building(features[0], h, mc::test::default_config().params, RunConfig{});
+}
+
 // A Rotterdam terraced house stored as roofs and ground only (tools/gen_open_variants.py variant
 // (b) of ../shared's cjio/rotterdam/rotterdam_subset.json, seed 19; the building alone in
 // tests/pipeline/data). Its footprint's corner under the step between the low and the high roof is
 // where three vertical planes nearly meet: before the shell was closed on the grid, every level's
 // part there failed 302 and the building was written through as failed.
 TEST(PartRepair, RoofsAndGroundHouseWithAStepIsWrittenValid) {
-  const std::string path =
-      std::string(MC_SOURCE_DIR) + "/tests/pipeline/data/rotterdam_roofs_and_ground_step.city.json";
-  mc::io::Header h;
-  auto features = read_some(path, h);
-  ASSERT_EQ(features.size(), 1u);
-  const BuildingOutcome b = run_building(features[0], h, mc::test::default_config().params, RunConfig{});
+  const BuildingOutcome b = run_the_building("rotterdam_roofs_and_ground_step.city.json");
   EXPECT_EQ(b.status, "ok") << b.reason;
   EXPECT_GT(b.size.parts_written, 0u);
   EXPECT_GT(b.size.parts_repaired, 0u);
@@ -330,12 +334,7 @@ TEST(PartRepair, RoofsAndGroundHouseWithAStepIsWrittenValid) {
 // below val3dity's snap distance, so a ring repeated a vertex (102) at every level but the first
 // and the building was written through as failed.
 TEST(PartRepair, RingsAreCleanedAsVal3ditySeesThem) {
-  const std::string path =
-      std::string(MC_SOURCE_DIR) + "/tests/pipeline/data/3dbag_roofs_and_ground_18428.city.json";
-  mc::io::Header h;
-  auto features = read_some(path, h);
-  ASSERT_EQ(features.size(), 1u);
-  const BuildingOutcome b = run_building(features[0], h, mc::test::default_config().params, RunConfig{});
+  const BuildingOutcome b = run_the_building("3dbag_roofs_and_ground_18428.city.json");
   EXPECT_EQ(b.status, "ok") << b.reason;
   EXPECT_EQ(b.levels.size(), 4u);
   EXPECT_GT(b.size.parts_repaired, 0u);
