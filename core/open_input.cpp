@@ -129,7 +129,7 @@ std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, 
     b.hi = b.hi + Vec3{dist, dist, 0};
     b.lo.z = z_lo;
     b.hi.z = z_hi;
-    out.push_back({g.plane, b, 0.0, {}});
+    out.push_back({g.plane, b, g.length * (z_hi - z_lo), {}});
   }
   return out;
 }

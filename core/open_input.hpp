@@ -38,7 +38,8 @@ OpenInput analyse_open_input(const PolygonMesh& mesh, double dist);
 // Vertical planes through the uncovered boundary edges (the foot of a missing wall under a roof
 // edge, the rim of a ground without walls), edges with the same plane (normals within
 // `angle_rad`, within δ) grouped; groups shorter than `min_length` are left out. Each plane's box
-// spans its edges horizontally (grown by δ) and [z_lo, z_hi] vertically.
+// spans its edges horizontally (grown by δ) and [z_lo, z_hi] vertically; its area is the group's
+// length times that height (the missing wall's size, which orders it among the regions).
 std::vector<HolePlane> boundary_wall_planes(const OpenInput& open, double dist, double angle_rad,
                                             double min_length, double z_lo, double z_hi);
 

@@ -1,6 +1,7 @@
 #include "core/preprocess.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <optional>
 #include <cmath>
 #include <stdexcept>
@@ -85,16 +86,18 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cbox.hi += Vec3{pad, pad, pad};
   out.complex = std::make_unique<CellComplex>(*out.planes, cbox);
   std::vector<CarvePlane> cps;
+  std::vector<double> cp_area;  // per carving plane: the area of the face (or missing face) it is from
   // Registers a carving plane; a plane's label is the first one given to it.
-  auto add_carve_plane = [&](const Plane& pl, const BBox& where, int32_t label) {
+  auto add_carve_plane = [&](const Plane& pl, const BBox& where, int32_t label, double area) {
     const uint32_t id = out.planes->add(pl, PlaneOrigin::Region);
     if (out.plane_label.size() <= id) out.plane_label.resize(id + 1, -1);
     if (out.plane_label[id] < 0) out.plane_label[id] = label;
     cps.push_back({id, where});
+    cp_area.push_back(area);
     return id;
   };
   std::vector<uint32_t> region_plane;
-  for (const auto& r : regions) region_plane.push_back(add_carve_plane(r.plane, r.bbox, r.semantic));
+  for (const auto& r : regions) region_plane.push_back(add_carve_plane(r.plane, r.bbox, r.semantic, r.area));
   // Fitted planes that share an input corner meet there exactly (else the carving may refuse
   // one of them at a hair-close vertex); the tolerance is that hair.
   if (p.snap_corners)
@@ -102,7 +105,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // Planes of the input's holes (missing faces), after the regions; a virtual face.
   const std::vector<HolePlane> holes = hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z);
   for (const HolePlane& h : holes) {
-    add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"));
+    add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area);
     ++out.hole_planes;
   }
   // Open inputs (missing walls, grounds, roofs): the vertical planes of their open boundary,
@@ -146,15 +149,28 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
           break;
         }
       if (known) continue;
-      add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"));
+      add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area);
       ++out.boundary_wall_planes;
     }
+  }
+  // An open input carves its missing faces in their turn among the regions, by size (stable: the
+  // regions keep their order). After a smaller region that shares a corner with it (a
+  // few-centimetre wall at the end of a missing party wall) a missing face's plane would meet
+  // only cells that the smaller plane already cut through that corner, and the hair rule keeps
+  // it out of them: a wedge of air or of the building stays mislabelled (docs/algorithm.md §6.4).
+  if (out.open_input) {
+    std::vector<size_t> order(cps.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cp_area[a] > cp_area[b]; });
+    std::vector<CarvePlane> sorted;
+    for (size_t i : order) sorted.push_back(cps[i]);
+    cps = std::move(sorted);
   }
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
   BBox ground_box = out.box;
   ground_box.lo.z = ground_z;
-  add_carve_plane({{0, 0, 1}, -ground_z}, ground_box, mesh.label_index("GroundSurface"));
+  add_carve_plane({{0, 0, 1}, -ground_z}, ground_box, mesh.label_index("GroundSurface"), 0.0);
   out.labels = mesh.semantic_labels;
 
   // Oracles and carving.
