@@ -128,6 +128,22 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     }
   }
   out.open_input = open.open(out.cell_size);
+  // An open input carves its missing faces (hole planes) in their turn among the regions, by size
+  // (stable: the regions keep their order). After a smaller region that shares a corner with it
+  // (a few-centimetre wall at the end of a missing party wall) a missing face's plane would meet
+  // only cells that the smaller plane already cut through that corner, and the hair rule keeps it
+  // out of them: a wedge of air or of the building stays mislabelled (docs/algorithm.md §6.4).
+  // The open boundary's vertical planes stay after them: ordered by size too, they made walls-less
+  // models worse (docs/known-weaknesses.md).
+  if (out.open_input) {
+    const size_t n = regions.size() + out.hole_planes;
+    std::vector<size_t> order(n);
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cp_area[a] > cp_area[b]; });
+    std::vector<CarvePlane> sorted;
+    for (size_t i : order) sorted.push_back(cps[i]);
+    std::copy(sorted.begin(), sorted.end(), cps.begin());
+  }
   out.open_boundary_length = open.uncovered_length;
 
   const bool vertical_ok = open.vertical_applicable();
@@ -152,19 +168,6 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
       add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area);
       ++out.boundary_wall_planes;
     }
-  }
-  // An open input carves its missing faces in their turn among the regions, by size (stable: the
-  // regions keep their order). After a smaller region that shares a corner with it (a
-  // few-centimetre wall at the end of a missing party wall) a missing face's plane would meet
-  // only cells that the smaller plane already cut through that corner, and the hair rule keeps
-  // it out of them: a wedge of air or of the building stays mislabelled (docs/algorithm.md §6.4).
-  if (out.open_input) {
-    std::vector<size_t> order(cps.size());
-    std::iota(order.begin(), order.end(), size_t{0});
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cp_area[a] > cp_area[b]; });
-    std::vector<CarvePlane> sorted;
-    for (size_t i : order) sorted.push_back(cps[i]);
-    cps = std::move(sorted);
   }
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
