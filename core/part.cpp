@@ -207,34 +207,21 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
         ConcaveLine& L1 = lines[i].line;
         ConcaveLine& L2 = lines[j].line;
         if (!lines[i].reflex && !lines[j].reflex) continue;
-        uint32_t shared, b, c;
+        // The plane the two lines share, and each line's other plane with its normal (the first
+        // pairing in the order p1/p1, p1/p2, p2/p1, p2/p2).
+        uint32_t b = 0, c = 0;
         Vec3 nb, nc;
-        if (L1.p1 == L2.p1 && L1.p2 != L2.p2) {
-          shared = L1.p1;
-          b = L1.p2;
-          nb = L1.n2;
-          c = L2.p2;
-          nc = L2.n2;
-        } else if (L1.p1 == L2.p2 && L1.p2 != L2.p1) {
-          shared = L1.p1;
-          b = L1.p2;
-          nb = L1.n2;
-          c = L2.p1;
-          nc = L2.n1;
-        } else if (L1.p2 == L2.p1 && L1.p1 != L2.p2) {
-          shared = L1.p2;
-          b = L1.p1;
-          nb = L1.n1;
-          c = L2.p2;
-          nc = L2.n2;
-        } else if (L1.p2 == L2.p2 && L1.p1 != L2.p1) {
-          shared = L1.p2;
-          b = L1.p1;
-          nb = L1.n1;
-          c = L2.p1;
-          nc = L2.n1;
-        } else continue;
-        (void)shared;
+        bool paired = false;
+        for (int s1 = 0; s1 < 2 && !paired; ++s1)
+          for (int s2 = 0; s2 < 2 && !paired; ++s2) {
+            const uint32_t a1 = s1 ? L1.p2 : L1.p1, o1 = s1 ? L1.p1 : L1.p2;
+            const uint32_t a2 = s2 ? L2.p2 : L2.p1, o2 = s2 ? L2.p1 : L2.p2;
+            if (a1 != a2 || o1 == o2) continue;
+            b = o1, nb = s1 ? L1.n1 : L1.n2;
+            c = o2, nc = s2 ? L2.n1 : L2.n2;
+            paired = true;
+          }
+        if (!paired) continue;
         if (b == c || std::abs(dot(L1.dir, L2.dir)) < 0.95) continue;
         const Vec3 mid2 = L2.point + L2.dir * (0.5 * (L2.t0 + L2.t1));
         const Vec3 off = mid2 - L1.point;
@@ -266,7 +253,6 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
         for (const RawLine* src : {&lines[i], &lines[j]}) {
           double lo, hi;
           extent(src->line, lo, hi);
-          const double sign = dot(src->line.dir, M.dir) >= 0 ? 1.0 : -1.0;
           auto keep_piece = [&](double s0, double s1) {
             if (s1 - s0 <= delta) return;
             RawLine r = *src;
@@ -276,7 +262,6 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
             r.line.t1 = std::max(u0, u1);
             next.push_back(r);
           };
-          (void)sign;
           keep_piece(lo, std::min(hi, M.t0));
           keep_piece(std::max(lo, M.t1), hi);
         }
