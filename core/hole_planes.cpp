@@ -8,14 +8,67 @@
 
 namespace mc {
 
+namespace {
+
+// cos 10°: a loop whose plane is this close to horizontal is a missing horizontal face.
+constexpr double kHorizontalCos = 0.984807753;
+
+struct FaceExtent {
+  BBox box;
+  bool horizontal_ish = false;  // not a wall: |normal.z| above sin 10°
+};
+
+double overlap_xy(const BBox& a, const BBox& b) {
+  const double w = std::min(a.hi.x, b.hi.x) - std::max(a.lo.x, b.lo.x);
+  const double h = std::min(a.hi.y, b.hi.y) - std::max(a.lo.y, b.lo.y);
+  return w > 0 && h > 0 ? w * h : 0.0;
+}
+
+// A horizontal loop at the lower end of the faces around it, with an input face below it, is the
+// top of a gap between walls and ground (walls that stop short of the ground): the missing surface
+// is the vertical band down to the ground, which the open boundary's vertical planes close, not a
+// horizontal face at the walls' lower edge. (A missing roof has its walls below the loop; an open
+// bottom above the lowest level has nothing below it and is kept as a floor, §6.4.)
+bool gap_above_ground(const std::vector<uint32_t>& loop, const std::vector<uint32_t>& loop_faces,
+                      const PolygonMesh& mesh, const std::vector<FaceExtent>& faces, const BBox& loop_box,
+                      double loop_z, double dist) {
+  double up = 0, total = 0;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const double len = norm(mesh.vertices[loop[(i + 1) % loop.size()]] - mesh.vertices[loop[i]]);
+    total += len;
+    const BBox& fb = faces[loop_faces[i]].box;
+    if ((fb.lo.z + fb.hi.z) / 2 > loop_z + dist) up += len;
+  }
+  if (!(total > 0) || up < 0.5 * total) return false;
+  const double loop_area = (loop_box.hi.x - loop_box.lo.x) * (loop_box.hi.y - loop_box.lo.y);
+  for (const FaceExtent& f : faces)
+    if (f.horizontal_ish && f.box.hi.z < loop_z - dist && overlap_xy(f.box, loop_box) >= 0.5 * loop_area)
+      return true;
+  return false;
+}
+
+}  // namespace
+
 std::vector<HolePlane> hole_planes(const PolygonMesh& mesh, double dist, double min_area, double lowest_z) {
-  std::map<std::pair<uint32_t, uint32_t>, int> uses;  // undirected edge -> number of ring uses
-  for (const Polygon& f : mesh.faces)
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;            // undirected edge -> number of ring uses
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> edge_face;  // undirected edge -> (last) face using it
+  std::vector<FaceExtent> faces(mesh.faces.size());
+  for (uint32_t fi = 0; fi < mesh.faces.size(); ++fi) {
+    const Polygon& f = mesh.faces[fi];
+    Vec3 newell{0, 0, 0};
     for (const auto& r : f.rings)
       for (size_t i = 0; i < r.size(); ++i) {
         const uint32_t a = r[i], b = r[(i + 1) % r.size()];
-        if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
+        faces[fi].box.add(mesh.vertices[a]);
+        newell += cross(mesh.vertices[a], mesh.vertices[b]);
+        if (a != b) {
+          ++uses[{std::min(a, b), std::max(a, b)}];
+          edge_face[{std::min(a, b), std::max(a, b)}] = fi;
+        }
       }
+    const double nn = norm(newell);
+    faces[fi].horizontal_ish = nn > 0 && std::abs(newell.z) / nn > 0.17364817766;  // sin 10°
+  }
   std::map<uint32_t, std::vector<uint32_t>> adj;  // boundary graph
   for (const auto& [e, n] : uses)
     if (n == 1) {
@@ -81,6 +134,14 @@ std::vector<HolePlane> hole_planes(const PolygonMesh& mesh, double dist, double 
     for (uint32_t v : loop) worst = std::max(worst, std::abs(h.plane.signed_distance(mesh.vertices[v])));
     if (worst > dist) continue;
     if (h.bbox.hi.z - lowest_z <= dist) continue;  // the open bottom: the ground plane caps it
+    if (std::abs(h.plane.n.z) >= kHorizontalCos) {
+      std::vector<uint32_t> loop_faces(loop.size());
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+        loop_faces[i] = edge_face.at({std::min(a, b), std::max(a, b)});
+      }
+      if (gap_above_ground(loop, loop_faces, mesh, faces, h.bbox, c.z, dist)) continue;
+    }
     for (uint32_t v : loop) h.loop.push_back(mesh.vertices[v]);
     out.push_back(std::move(h));
   }

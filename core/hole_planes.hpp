@@ -3,7 +3,8 @@
 // of the missing face. Without it the carving has no plane there, and the cell runs on to the
 // next plane or to the padded box (a missing front wall let a gable house's cell grow 1 m out).
 // The open bottom (walls without a floor) is such a loop too; preprocessing caps it separately
-// with the ground plane, so loops lying in the input's lowest level are left out.
+// with the ground plane, so loops lying in the input's lowest level are left out; so are horizontal
+// loops along the lower edges of walls that stop above a ground (a gap, docs/algorithm.md §5).
 #pragma once
 #include <vector>
 
