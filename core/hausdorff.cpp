@@ -9,9 +9,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "core/aabb_triangles.hpp"
+#include "core/embree_device.hpp"
 #include "core/plane.hpp"
 
 namespace mc {
@@ -19,8 +21,6 @@ namespace mc {
 namespace {
 
 using aabb::K;
-using aabb::Primitive;
-using aabb::Tree;
 using aabb::Triangles;
 
 // Samples per side at most (the step is coarsened beyond). Every triangle's corners and edges are
@@ -120,16 +120,124 @@ struct OneSided {
   double max = 0, mean = 0;
 };
 
-std::vector<double> distances(const Tree& tree, const std::vector<K::Point_3>& pts) {
+// The closest point to p on triangle abc (Ericson, Real-Time Collision Detection, §5.1.5): by
+// the Voronoi region of p, in doubles.
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Closest-point queries on a triangle set: an Embree BVH (float) finds the candidates, whose
+// distances are exact in doubles. Embree's boxes hold the float copies of the vertices, so the
+// query radius it culls with is the best distance so far plus `margin_` (a few float ulps of
+// the coordinates): no triangle within the best distance is ever culled.
+class ClosestPoints {
+ public:
+  explicit ClosestPoints(const Triangles& tris) {
+    double extent = 0;
+    for (const auto& t : tris) {
+      std::array<Vec3, 3> v;
+      for (int k = 0; k < 3; ++k) {
+        v[k] = {t[k].x(), t[k].y(), t[k].z()};
+        extent = std::max({extent, std::abs(v[k].x), std::abs(v[k].y), std::abs(v[k].z)});
+      }
+      tris_.push_back(v);
+    }
+    margin_ = static_cast<float>(1e-5 * std::max(extent, 1e-9));
+    scene_ = rtcNewScene(shared_embree_device());
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geom = rtcNewGeometry(shared_embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), 3 * tris_.size()));
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris_.size()));
+    for (size_t i = 0; i < tris_.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        vb[9 * i + 3 * k] = static_cast<float>(tris_[i][k].x);
+        vb[9 * i + 3 * k + 1] = static_cast<float>(tris_[i][k].y);
+        vb[9 * i + 3 * k + 2] = static_cast<float>(tris_[i][k].z);
+        ib[3 * i + k] = static_cast<unsigned>(3 * i + k);
+      }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene_);
+    if (rtcGetDeviceError(shared_embree_device()) != RTC_ERROR_NONE) {
+      rtcReleaseScene(scene_);
+      throw std::runtime_error("Embree: closest-point scene build failed");
+    }
+  }
+  ~ClosestPoints() { rtcReleaseScene(scene_); }
+  ClosestPoints(const ClosestPoints&) = delete;
+  ClosestPoints& operator=(const ClosestPoints&) = delete;
+
+  // The distance from p to the nearest triangle; `hint` (a triangle index, updated) is tried
+  // first: consecutive samples of one triangle mostly share their nearest triangle.
+  double distance(const Vec3& p, uint32_t& hint) const {
+    Query q{this, p, std::numeric_limits<double>::infinity(), hint};
+    if (hint < tris_.size()) q.best2 = squared(p, hint);
+    RTCPointQuery pq;
+    pq.x = static_cast<float>(p.x);
+    pq.y = static_cast<float>(p.y);
+    pq.z = static_cast<float>(p.z);
+    pq.time = 0;
+    pq.radius = std::isfinite(q.best2) ? static_cast<float>(std::sqrt(q.best2)) + margin_
+                                       : std::numeric_limits<float>::infinity();
+    RTCPointQueryContext ctx;
+    rtcInitPointQueryContext(&ctx);
+    rtcPointQuery(scene_, &pq, &ctx, &ClosestPoints::visit, &q);
+    hint = q.best;
+    return std::sqrt(q.best2);
+  }
+
+ private:
+  struct Query {
+    const ClosestPoints* self;
+    Vec3 p;
+    double best2;
+    uint32_t best;
+  };
+  double squared(const Vec3& p, uint32_t t) const {
+    const auto& v = tris_[t];
+    const Vec3 d = p - closest_on_triangle(p, v[0], v[1], v[2]);
+    return dot(d, d);
+  }
+  static bool visit(RTCPointQueryFunctionArguments* args) {
+    auto* q = static_cast<Query*>(args->userPtr);
+    if (args->primID == q->best) return false;
+    const double d2 = q->self->squared(q->p, args->primID);
+    if (!(d2 < q->best2)) return false;
+    q->best2 = d2;
+    q->best = args->primID;
+    args->query->radius = static_cast<float>(std::sqrt(d2)) + q->self->margin_;
+    return true;
+  }
+  std::vector<std::array<Vec3, 3>> tris_;
+  float margin_ = 0;
+  RTCScene scene_ = nullptr;
+};
+
+std::vector<double> distances(const ClosestPoints& to, const std::vector<K::Point_3>& pts) {
   std::vector<double> d(pts.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, d.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-    // Consecutive samples are neighbours on one triangle: the previous closest point is a
-    // tighter hint than the tree's default.
-    K::Point_3 hint = tree.closest_point(pts[r.begin()]);
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      hint = tree.closest_point(pts[i], hint);
-      d[i] = std::sqrt(CGAL::to_double(CGAL::squared_distance(pts[i], hint)));
-    }
+    uint32_t hint = UINT32_MAX;
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      d[i] = to.distance({pts[i].x(), pts[i].y(), pts[i].z()}, hint);
   });
   return d;
 }
@@ -137,12 +245,11 @@ std::vector<double> distances(const Tree& tree, const std::vector<K::Point_3>& p
 OneSided one_sided(const Triangles& from, const Triangles& to, double step) {
   if (from.empty()) return {};
   if (to.empty()) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  Tree tree(to.begin(), to.end());
-  tree.accelerate_distance_queries();
+  const ClosestPoints nearest(to);
   // Mean (and a first maximum) from a sampling of bounded size.
   double mean_step = step;
   const Samples s = sample(from, step, kMeanSamples, &mean_step);
-  const std::vector<double> d = distances(tree, s.points);
+  const std::vector<double> d = distances(nearest, s.points);
   OneSided out;
   double wsum = 0;
   for (size_t i = 0; i < d.size(); ++i) {  // serial sums: the result does not depend on threads

@@ -16,12 +16,12 @@ struct HausdorffResult {
 
 // Points are sampled on every triangle (deterministic barycentric lattice with spacing <=
 // `sampling_step`, slivers first bisected into fat pieces) and their exact closest-point
-// distances to the other soup are taken (CGAL AABB tree). The maxima are lower bounds within
-// `sampling_step` of the true values; triangles that cannot raise the maximum (distance is
-// 1-Lipschitz: corner distance + edge length) are not sampled. The mean is estimated from at
-// most 8000 samples per side (coarser lattice when needed; corners and edges always sampled). A step <= 0
-// means 0.1% of the bounding-box diagonal. Degenerate triangles are ignored. An empty side: distances from it
-// are 0, to it +infinity. Works on open, non-manifold, self-intersecting soups.
+// distances to the other soup are taken (an Embree BVH finds the candidates, the distances are exact in
+// doubles). The maxima are lower bounds within `sampling_step` of the true values; triangles that cannot
+// raise the maximum (distance is 1-Lipschitz: corner distance + edge length) are not sampled. The mean is
+// estimated from at most 8000 samples per side (coarser lattice when needed; corners and edges always
+// sampled). A step <= 0 means 0.1% of the bounding-box diagonal. Degenerate triangles are ignored. An empty
+// side: distances from it are 0, to it +infinity. Works on open, non-manifold, self-intersecting soups.
 HausdorffResult hausdorff(const TriangleSoup& a, const TriangleSoup& b, double sampling_step);
 
 }  // namespace mc

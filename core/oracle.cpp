@@ -1,4 +1,5 @@
 #include "core/oracle.hpp"
+#include "core/embree_device.hpp"
 #include "core/union_find.hpp"
 
 #include <embree3/rtcore.h>
@@ -17,16 +18,6 @@
 namespace mc {
 
 namespace {
-
-// One Embree device per process: creating one per building would respawn its thread pool.
-RTCDevice shared_device() {
-  static RTCDevice device = [] {
-    RTCDevice d = rtcNewDevice(nullptr);
-    if (!d) throw std::runtime_error("Embree: cannot create device");
-    return d;
-  }();
-  return device;
-}
 
 using Hits = std::vector<std::pair<float, unsigned>>;  // (t, primitive id)
 
@@ -94,7 +85,7 @@ namespace {
 // coordinates relative to `origin`, every hit reported to `filter`. Both oracles build theirs so.
 RTCScene triangle_scene(const TriangleSoup& soup, const std::vector<uint32_t>* used, const Vec3& origin,
                         RTCFilterFunctionN filter) {
-  RTCDevice device = shared_device();
+  RTCDevice device = shared_embree_device();
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
