@@ -1,7 +1,10 @@
 // Hausdorff distance between triangle soups.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <random>
 
 #include "core/hausdorff.hpp"
 #include "off_fixture.hpp"
@@ -9,6 +12,72 @@
 
 namespace mc {
 namespace {
+
+// Brute-force distance from p to the nearest triangle of s (Ericson's closest point, written
+// out independently of the library's: by projection onto the plane, else onto the edges).
+double brute_distance(const Vec3& p, const TriangleSoup& s) {
+  double best = std::numeric_limits<double>::infinity();
+  auto seg = [](const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    const double t = std::clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
+    return norm(p - (a + ab * t));
+  };
+  for (const auto& t : s.triangles) {
+    const Vec3 &a = s.vertices[t[0]], &b = s.vertices[t[1]], &c = s.vertices[t[2]];
+    const Vec3 n = normalized(cross(b - a, c - a));
+    const Vec3 q = p - n * dot(p - a, n);
+    const bool inside = dot(cross(b - a, q - a), n) >= 0 && dot(cross(c - b, q - b), n) >= 0 &&
+                        dot(cross(a - c, q - c), n) >= 0;
+    best = std::min(best,
+                    inside ? std::abs(dot(p - a, n)) : std::min({seg(p, a, b), seg(p, b, c), seg(p, c, a)}));
+  }
+  return best;
+}
+
+// The closest-point queries find the nearest of many triangles exactly, far from the origin too
+// (Embree's boxes are in floats; the distances must not be): a triangle smaller than the step is
+// sampled at its three corners only, so the one-sided maximum and mean are known exactly.
+TEST(Hausdorff, NearestOfManyTrianglesIsExact) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 100), small(-0.001, 0.001);
+  const Vec3 far{85000, 446000, 0};
+  TriangleSoup many;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 c = far + Vec3{u(rng), u(rng), u(rng) / 4};
+    for (int k = 0; k < 3; ++k) many.vertices.push_back(c + Vec3{u(rng) / 20, u(rng) / 20, u(rng) / 20});
+    many.triangles.push_back({3u * i, 3u * i + 1, 3u * i + 2});
+  }
+  // Around each query corner, 30 small axis-aligned squares facing it (their boxes are as near
+  // as they are) at distances 10 m + j micrometres, in scrambled order and axis directions: the
+  // nearest differs from the others by less than Embree's float rounding of the coordinates.
+  for (int trial = 0; trial < 20; ++trial) {
+    TriangleSoup tiny;
+    const Vec3 c = far + Vec3{u(rng), u(rng), u(rng) / 4};
+    tiny.vertices = {c, c + Vec3{1e-4, 0, 0}, c + Vec3{0, 1e-4, 0}};
+    tiny.triangles = {{0, 1, 2}};
+    TriangleSoup soup = many;
+    for (int j = 0; j < 30; ++j) {
+      const int k = (j * 17 + trial) % 30, axis = k % 3;
+      const double sign = (k / 3) % 2 ? 1.0 : -1.0;
+      Vec3 e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+      const Vec3 q = c + e[axis] * (sign * (10 + 1e-6 * j));
+      const Vec3 a = e[(axis + 1) % 3] * 0.05, b = e[(axis + 2) % 3] * 0.05;
+      const uint32_t v = static_cast<uint32_t>(soup.vertices.size());
+      for (const Vec3& w : {q - a - b, q + a - b, q + a + b, q - a + b}) soup.vertices.push_back(w);
+      soup.triangles.push_back({v, v + 1, v + 2});
+      soup.triangles.push_back({v, v + 2, v + 3});
+    }
+    const HausdorffResult r = hausdorff(tiny, soup, 1.0);
+    double mx = 0, mean = 0;
+    for (const Vec3& v : tiny.vertices) {
+      const double d = brute_distance(v, soup);
+      mx = std::max(mx, d);
+      mean += d / 3;
+    }
+    EXPECT_NEAR(r.a_to_b, mx, 1e-9);
+    EXPECT_NEAR(r.mean_a_to_b, mean, 1e-9);
+  }
+}
 
 TEST(Hausdorff, SelfIsZero) {
   const TriangleSoup s = triangulate(test::gable_house());
