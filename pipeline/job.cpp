@@ -17,6 +17,7 @@
 #include "pipeline/massing.hpp"
 #include "pipeline/measures.hpp"
 #include "pipeline/part_objects.hpp"
+#include "pipeline/part_repair.hpp"
 #include "pipeline/terrain.hpp"
 
 namespace mc::pipeline {
@@ -151,18 +152,37 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   if (conforming) meshes = level_part_meshes(pre, parts);
   else
     for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
+  std::vector<EncodedSolid> solids;
+  for (size_t j = 0; j < parts.size(); ++j) {
+    solids.push_back(encode_solid(meshes[j], lod, version, pool));
+    e.check_seconds += solids.back().check_seconds;
+    if (!solids.back().defect.empty()) {
+      e.defect =
+          "part " + std::to_string(j) + " is invalid on the output grid (" + solids.back().defect + ")";
+      return e;
+    }
+  }
+  // A part repaired on its own may have changed a face it shares: both copies made the same again.
+  if (conforming) {
+    std::vector<std::vector<GridFace>> faces;
+    std::vector<bool> repaired;
+    for (EncodedSolid& solid : solids) {
+      faces.push_back(solid.faces);
+      repaired.push_back(solid.repaired);
+    }
+    for (size_t k : align_shared_faces(faces, repaired, pool.vertices())) {
+      solids[k].faces = std::move(faces[k]);
+      write_solid(solids[k], meshes[k].semantic_labels, lod, version);
+      solids[k].repaired = true;  // counted with the repaired parts
+    }
+  }
   for (size_t j = 0; j < parts.size(); ++j) {
     const PartResult& part = parts[j];
     PolygonMesh& mesh = meshes[j];
     double hull_volume = part.hull_volume;
     if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton parts
     const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
-    EncodedSolid solid = encode_solid(mesh, lod, version, pool);
-    e.check_seconds += solid.check_seconds;
-    if (!solid.defect.empty()) {
-      e.defect = "part " + std::to_string(j) + " is invalid on the output grid (" + solid.defect + ")";
-      return e;
-    }
+    EncodedSolid& solid = solids[j];
     e.dropped_faces += solid.dropped_faces;
     e.repaired_parts += solid.repaired;
     e.split_faces += solid.split_faces;

@@ -99,29 +99,36 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
   out.repaired = checked.repaired;
   out.split_faces = checked.split_faces + bent;
 
+  out.faces = std::move(checked.faces);
+  write_solid(out, part.semantic_labels, lod, version);
+  return out;
+}
+
+void write_solid(EncodedSolid& solid, const std::vector<std::string>& semantic_labels, const std::string& lod,
+                 const std::string& version) {
   json surfaces = json::array(), values = json::array(), boundaries = json::array();
-  std::vector<int> surface_of_label(part.semantic_labels.size(), -1);
-  for (GridFace& f : checked.faces) {
+  std::vector<int> surface_of_label(semantic_labels.size(), -1);
+  solid.shell.clear();
+  for (const GridFace& f : solid.faces) {
     json value = nullptr;
-    if (f.semantic >= 0 && static_cast<size_t>(f.semantic) < part.semantic_labels.size()) {
+    if (f.semantic >= 0 && static_cast<size_t>(f.semantic) < semantic_labels.size()) {
       int& s = surface_of_label[f.semantic];
       if (s < 0) {
         s = static_cast<int>(surfaces.size());
-        surfaces.push_back({{"type", part.semantic_labels[f.semantic]}});
+        surfaces.push_back({{"type", semantic_labels[f.semantic]}});
       }
       value = s;
     }
     values.push_back(value);
     boundaries.push_back(f.rings);
-    out.shell.push_back(std::move(f.rings));
+    solid.shell.push_back(f.rings);
   }
-  out.geometry = {{"type", "Solid"}};
-  if (version == "1.0") out.geometry["lod"] = std::strtod(lod.c_str(), nullptr);
-  else out.geometry["lod"] = lod;
-  out.geometry["boundaries"] = json::array({boundaries});
+  solid.geometry = {{"type", "Solid"}};
+  if (version == "1.0") solid.geometry["lod"] = std::strtod(lod.c_str(), nullptr);
+  else solid.geometry["lod"] = lod;
+  solid.geometry["boundaries"] = json::array({boundaries});
   if (!surfaces.empty())
-    out.geometry["semantics"] = {{"surfaces", surfaces}, {"values", json::array({values})}};
-  return out;
+    solid.geometry["semantics"] = {{"surfaces", surfaces}, {"values", json::array({values})}};
 }
 
 }  // namespace mc::pipeline

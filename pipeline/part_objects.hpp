@@ -49,12 +49,13 @@ struct GridFace {
 };
 
 struct EncodedSolid {
-  nlohmann::json geometry;   // {"type":"Solid","lod":...,"boundaries":...,"semantics":...}
-  Shell shell;               // the boundaries as written
-  size_t dropped_faces = 0;  // faces that collapsed to nothing on the grid
-  size_t split_faces = 0;    // faces written as several polygons to pass the checks
-  bool repaired = false;     // the part needed a repair to pass the checks
-  double check_seconds = 0;  // spent checking and repairing
+  nlohmann::json geometry;      // {"type":"Solid","lod":...,"boundaries":...,"semantics":...}
+  Shell shell;                  // the boundaries as written
+  std::vector<GridFace> faces;  // the same, with each face's neighbour and label
+  size_t dropped_faces = 0;     // faces that collapsed to nothing on the grid
+  size_t split_faces = 0;       // faces written as several polygons to pass the checks
+  bool repaired = false;        // the part needed a repair to pass the checks
+  double check_seconds = 0;     // spent checking and repairing
   // Empty when the written solid passes every check; otherwise why not (nothing may be written).
   std::string defect;
 };
@@ -62,5 +63,9 @@ struct EncodedSolid {
 // `lod` is written as a string, except for CityJSON 1.0 (numeric lods).
 EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const std::string& version,
                           VertexPool& pool);
+
+// Sets `solid.geometry` and `solid.shell` from `solid.faces` (after the faces changed).
+void write_solid(EncodedSolid& solid, const std::vector<std::string>& semantic_labels, const std::string& lod,
+                 const std::string& version);
 
 }  // namespace mc::pipeline

@@ -276,6 +276,87 @@ size_t triangulate_bent_shared_faces(std::vector<GridFace>& faces, const std::ve
   return replaced;
 }
 
+namespace {
+
+// A face's rings, each started at its smallest id, in a canonical order: equal keys are the same
+// polygon with the same orientation.
+std::vector<std::vector<int64_t>> face_key(const GridFace& f, bool reversed) {
+  std::vector<std::vector<int64_t>> key;
+  for (auto ring : f.rings) {
+    if (reversed) std::reverse(ring.begin(), ring.end());
+    std::rotate(ring.begin(), std::min_element(ring.begin(), ring.end()), ring.end());
+    key.push_back(std::move(ring));
+  }
+  std::sort(key.begin() + (key.empty() ? 0 : 1), key.end());  // the outer ring stays first
+  return key;
+}
+
+// The faces of `faces` shared with part `other`, as sorted keys.
+std::vector<std::vector<std::vector<int64_t>>> shared_keys(const std::vector<GridFace>& faces, int32_t other,
+                                                           bool reversed) {
+  std::vector<std::vector<std::vector<int64_t>>> keys;
+  for (const GridFace& f : faces)
+    if (f.neighbour == other) keys.push_back(face_key(f, reversed));
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+// `to`'s faces with the faces it shares with `from_id` replaced by reversed copies of `from`'s
+// faces shared with `to_id` (their semantic label: that of `to`'s first shared face).
+std::vector<GridFace> with_copy(const std::vector<GridFace>& to, int32_t to_id,
+                                const std::vector<GridFace>& from, int32_t from_id) {
+  std::vector<GridFace> out;
+  int32_t semantic = -1;
+  bool first = true;
+  for (const GridFace& f : to) {
+    if (f.neighbour == from_id) {
+      if (first) semantic = f.semantic, first = false;
+      continue;
+    }
+    out.push_back(f);
+  }
+  for (const GridFace& f : from)
+    if (f.neighbour == to_id) {
+      GridFace g = f;
+      for (auto& ring : g.rings) std::reverse(ring.begin(), ring.end());
+      g.neighbour = from_id;
+      g.semantic = semantic;
+      out.push_back(std::move(g));
+    }
+  return out;
+}
+
+}  // namespace
+
+std::vector<size_t> align_shared_faces(std::vector<std::vector<GridFace>>& parts,
+                                       const std::vector<bool>& repaired, const std::vector<Vec3>& pool) {
+  std::set<size_t> changed;
+  for (size_t j = 0; j < parts.size(); ++j) {
+    if (j >= repaired.size() || !repaired[j]) continue;
+    std::set<int32_t> others;
+    for (const GridFace& f : parts[j])
+      if (f.neighbour >= 0 && static_cast<size_t>(f.neighbour) < parts.size() &&
+          static_cast<size_t>(f.neighbour) != j)
+        others.insert(f.neighbour);
+    const int32_t jj = static_cast<int32_t>(j);
+    for (int32_t k : others) {
+      if (shared_keys(parts[j], k, false) == shared_keys(parts[k], jj, true)) continue;
+      std::vector<GridFace> to_k = with_copy(parts[k], k, parts[j], jj);
+      if (grid_solid_defect(to_k, pool).empty()) {
+        parts[k] = std::move(to_k);
+        changed.insert(static_cast<size_t>(k));
+        continue;
+      }
+      std::vector<GridFace> to_j = with_copy(parts[j], jj, parts[k], k);
+      if (grid_solid_defect(to_j, pool).empty()) {
+        parts[j] = std::move(to_j);
+        changed.insert(j);
+      }
+    }
+  }
+  return {changed.begin(), changed.end()};
+}
+
 std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool,
                               SolidCheck* check) {
   const LocalMesh m = as_mesh(faces, pool);

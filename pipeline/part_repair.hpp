@@ -35,6 +35,16 @@ PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>
 // of faces replaced.
 size_t triangulate_bent_shared_faces(std::vector<GridFace>& faces, const std::vector<Vec3>& pool);
 
+// After each part of a level was checked and repaired on its own: a repair that changed a face a
+// part shares with a neighbour (split it, triangulated it, put a vertex into its edge) leaves the
+// two copies different, and val3dity, which triangulates each copy by itself, then finds the two
+// parts overlapping (601). For every repaired part, each neighbour whose copy differs gets the
+// repaired part's copy (reversed), if it stays valid with it; else the repaired part takes the
+// neighbour's copy, if it stays valid. `parts[j]` are part j's faces (GridFace::neighbour indexes
+// `parts`). Returns the parts whose faces changed, ascending (docs/output-format.md, Repairs).
+std::vector<size_t> align_shared_faces(std::vector<std::vector<GridFace>>& parts,
+                                       const std::vector<bool>& repaired, const std::vector<Vec3>& pool);
+
 // The checks alone: val3dity's rules on the faces as they are (first error, or empty).
 std::string grid_solid_defect(const std::vector<GridFace>& faces, const std::vector<Vec3>& pool,
                               SolidCheck* check = nullptr);
