@@ -37,15 +37,25 @@ struct HairTest {
   }
 };
 
+// A live cell's vertices and their box, gathered once for the tests of all its planes.
+struct CellVertices {
+  std::vector<uint32_t> ids;
+  BBox box;
+  CellVertices(const CellComplex& cx, uint32_t c) : ids(cx.cell_vertices(c)) {
+    for (uint32_t v : ids) box.add(cx.point(v));
+  }
+};
+
 // Does plane q really cross cell c: a vertex beyond δ on both sides and the region nearby.
 // `No` also holds for every sub-cell of c (the plane can be dropped for them); `Hair` only for
 // this cell (a vertex a hair from the plane, which a later split may remove: keep the plane).
-Crossing crosses(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta, const BBox& outer) {
-  if (!cx.cell_bbox(c).overlaps(q.bbox, 3 * delta)) return Crossing::No;
+Crossing crosses(const CellComplex& cx, const CellVertices& c, const CarvePlane& q, double delta,
+                 const BBox& outer) {
+  if (!c.box.overlaps(q.bbox, 3 * delta)) return Crossing::No;
   const Plane& pl = cx.planes()[q.plane];
   const HairTest hair(pl, delta, outer);
   bool pos = false, neg = false, near = false;
-  for (uint32_t v : cx.cell_vertices(c)) {
+  for (uint32_t v : c.ids) {
     const double s = pl.signed_distance(cx.point(v));
     pos |= s > delta;
     neg |= s < -delta;
@@ -59,11 +69,12 @@ constexpr double kHairCutShare = 0.2;
 
 // The smallest distance from plane q of the vertices of cell c that lie a hair from it (see
 // `HairTest`); +inf when there is none.
-double hair_gap(const CellComplex& cx, uint32_t c, const CarvePlane& q, double delta, const BBox& outer) {
+double hair_gap(const CellComplex& cx, const CellVertices& c, const CarvePlane& q, double delta,
+                const BBox& outer) {
   const Plane& pl = cx.planes()[q.plane];
   const HairTest hair(pl, delta, outer);
   double gap = std::numeric_limits<double>::infinity();
-  for (uint32_t v : cx.cell_vertices(c)) {
+  for (uint32_t v : c.ids) {
     const double s = std::abs(pl.signed_distance(cx.point(v)));
     if (hair(s, cx.point(v))) gap = std::min(gap, s);
   }
@@ -157,15 +168,15 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   std::priority_queue<Entry> queue;
   std::vector<std::vector<uint32_t>> todo(cx.num_cells());  // remaining plane indices per cell
 
-  // Votes one cell; returns its inconsistent volume.
-  auto vote = [&](uint32_t c) {
+  // Votes one cell (`box`: its vertices' box); returns its inconsistent volume.
+  auto vote = [&](uint32_t c, const BBox& box) {
     const double v = cx.cell_volume(c);
     const long n = std::clamp<long>(static_cast<long>(std::ceil(v / unit)), p.min_points, p.max_points);
     // A cell the input surface does not touch is entirely inside or outside: a few points
     // (majority) decide it. Every other cell gets the full vote.
     const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
     const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
-    const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(cx.cell_bbox(c));
+    const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(box);
     const auto pts = sample_cell(
         cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
     classify(pts, first_id, flags);
@@ -180,7 +191,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     // An inside cell reaching more than δ out of the oracle's box has air in it for sure (beyond
     // the box everything is outside), however few of its points fell there (a sliver hanging
     // out of an open bottom): it stays in the queue for the open-bottom cap plane.
-    if (inside_label[c] && p.oracle_box.valid() && !p.oracle_box.contains(cx.cell_bbox(c), p.dist))
+    if (inside_label[c] && p.oracle_box.valid() && !p.oracle_box.contains(box, p.dist))
       score = std::max(score, 2 * p.inconsistency * unit);
     return score;
   };
@@ -195,7 +206,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   std::vector<uint32_t> all(planes.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   const uint32_t root = cx.root_cell();
-  enqueue(root, vote(root), all);
+  enqueue(root, vote(root, outer), all);
 
   while (!queue.empty()) {
     if (std::chrono::steady_clock::now() > deadline || cx.num_cells() > p.max_cells) {
@@ -210,8 +221,9 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     // because of a hair-close vertex stay for the sub-cells.
     size_t i = 0;
     std::vector<uint32_t> deferred;
+    const CellVertices cv(cx, c);
     for (; i < remaining.size(); ++i) {
-      const Crossing x = crosses(cx, c, planes[remaining[i]], p.dist, outer);
+      const Crossing x = crosses(cx, cv, planes[remaining[i]], p.dist, outer);
       if (x == Crossing::Yes) break;
       if (x == Crossing::Hair) deferred.push_back(remaining[i]);
     }
@@ -225,7 +237,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       // docs/design.md "Valid solids at every step").
       if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) continue;
       auto it = std::find_if(deferred.begin(), deferred.end(), [&](uint32_t q) {
-        return hair_gap(cx, c, planes[q], p.dist, outer) >= p.min_gap;
+        return hair_gap(cx, cv, planes[q], p.dist, outer) >= p.min_gap;
       });
       if (it == deferred.end()) continue;
       i = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
@@ -242,9 +254,10 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     ++res.splits;
     for (uint32_t child : {split->neg, split->pos}) {
       std::vector<uint32_t> kept;
+      const CellVertices cv_child(cx, child);
       for (uint32_t q : remaining)
-        if (crosses(cx, child, planes[q], p.dist, outer) != Crossing::No) kept.push_back(q);
-      enqueue(child, vote(child), std::move(kept));
+        if (crosses(cx, cv_child, planes[q], p.dist, outer) != Crossing::No) kept.push_back(q);
+      enqueue(child, vote(child, cv_child.box), std::move(kept));
     }
   }
   for (uint32_t c : cx.live_cells()) {
