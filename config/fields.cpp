@@ -61,7 +61,8 @@ std::vector<Field> fields_of(Params& p) {
        "keeps this distance from it (model units; 0 = never)"},
       {"preprocess", "snap_corners", &a.snap_corners, any(),
        "fitted planes sharing an input corner (4+ planes, e.g. a roof valley's eave) are made to meet there "
-       "exactly"},
+       "exactly, and a missing face's plane passing a hair from the line of two fitted planes goes through "
+       "it"},
       {"preprocess", "oracle_rays", &a.oracle_rays, at_least(1),
        "rays per point in the inside/outside majority vote"},
       {"preprocess", "fast_path", &a.fast_path, any(),

@@ -99,7 +99,20 @@ void CellComplex::ensure_planes() {
     if (built[id] == 1) throw std::logic_error("cell complex: cyclic plane anchor");
     built[id] = 1;
     const Plane& p = planes_[id];
-    if (const auto* a = planes_.anchor(id)) {
+    if (const auto* l = planes_.line_anchor(id)) {
+      // Through the exact line of the two planes, spanned by it and the direction in the plane's
+      // (double) normal plane across it, facing like that normal.
+      build((*l)[0]);
+      build((*l)[1]);
+      auto res = CGAL::intersection(ep[(*l)[0]], ep[(*l)[1]]);
+      const K::Line_3* line = res ? boost::get<K::Line_3>(&*res) : nullptr;
+      if (!line) throw std::logic_error("cell complex: line anchor planes do not meet in a line");
+      const K::Vector_3 u = line->to_vector(), n(p.n.x, p.n.y, p.n.z);
+      const K::Point_3 o = line->point(0);
+      K::Plane_3 pl(o, o + u, o + CGAL::cross_product(n, u));
+      if (CGAL::is_negative(pl.orthogonal_vector() * n)) pl = pl.opposite();
+      ep[id] = pl;
+    } else if (const auto* a = planes_.anchor(id)) {
       for (uint32_t q : *a) build(q);
       auto res = CGAL::intersection(ep[(*a)[0]], ep[(*a)[1]], ep[(*a)[2]]);
       const K::Point_3* pt = res ? boost::get<K::Point_3>(&*res) : nullptr;

@@ -99,4 +99,50 @@ size_t snap_corners(const PolygonMesh& mesh, const std::vector<PlaneRegion>& reg
   return anchored;
 }
 
+size_t snap_to_lines(const std::vector<uint32_t>& planes, const std::vector<BBox>& boxes,
+                     const std::vector<uint32_t>& region_plane, PlaneRegistry& registry, double tol,
+                     double grow) {
+  std::vector<uint32_t> regions = region_plane;
+  std::sort(regions.begin(), regions.end());
+  regions.erase(std::unique(regions.begin(), regions.end()), regions.end());
+  size_t anchored = 0;
+  for (size_t k = 0; k < planes.size(); ++k) {
+    const uint32_t q = planes[k];
+    if (registry.anchor(q) || registry.line_anchor(q) ||
+        std::binary_search(regions.begin(), regions.end(), q))
+      continue;
+    const Plane Q = registry[q];
+    const double on = 1e-9 * (1 + std::abs(Q.d));  // the carving's "on the plane" (carve.cpp)
+    const Vec3 centre = boxes[k].center();
+    double best = tol;
+    uint32_t best_a = 0, best_b = 0;
+    Vec3 best_u, best_p;
+    for (size_t i = 0; i < regions.size(); ++i)
+      for (size_t j = i + 1; j < regions.size(); ++j) {
+        const Plane &A = registry[regions[i]], &B = registry[regions[j]];
+        const Vec3 u = cross(A.n, B.n);
+        const double uu = dot(u, u);
+        if (uu < 1e-4) continue;  // (nearly) parallel planes: no well-defined line
+        const Vec3 un = u / std::sqrt(uu);
+        if (std::abs(dot(un, Q.n)) > 1e-6) continue;  // not parallel to Q
+        // The line's point nearest the origin, then the one nearest the box's centre.
+        const Vec3 p0 = (cross(B.n, u) * (-A.d) + cross(u, A.n) * (-B.d)) / uu;
+        const Vec3 p = p0 + un * dot(centre - p0, un);
+        BBox at;
+        at.add(p);
+        if (!boxes[k].overlaps(at, grow)) continue;
+        const double s = std::abs(Q.signed_distance(p));
+        if (s <= on || s >= best) continue;
+        best = s, best_a = regions[i], best_b = regions[j], best_u = un, best_p = p;
+      }
+    if (!(best < tol)) continue;
+    Plane line;
+    line.n = normalized(Q.n - best_u * dot(best_u, Q.n));
+    line.d = -dot(line.n, best_p);
+    registry.set_line_anchor(q, best_a, best_b, line);
+    ++anchored;
+  }
+  return anchored;
+}
+
 }  // namespace mc

@@ -24,4 +24,15 @@ namespace mc {
 size_t snap_corners(const PolygonMesh& mesh, const std::vector<PlaneRegion>& regions,
                     const std::vector<uint32_t>& region_plane, PlaneRegistry& registry, double tol);
 
+// Line snapping, for the planes of missing faces (hole and open-boundary planes: not fitted, they
+// go through input edges). Such a plane passing within `tol` of the line where two region planes
+// meet, without containing it, is refused by the carving's hair rule in every cell that line
+// bounds, and a wedge of air or of the building stays mislabelled (docs/algorithm.md §7.4). It is
+// anchored on the nearest such line instead (PlaneRegistry::set_line_anchor), which moves it by at
+// most `tol` there. Only lines parallel to the plane (within 10⁻⁶ rad) that pass through its box
+// (`boxes[i]` for `planes[i]`, grown by `grow`) count. Returns the number of planes anchored.
+size_t snap_to_lines(const std::vector<uint32_t>& planes, const std::vector<BBox>& boxes,
+                     const std::vector<uint32_t>& region_plane, PlaneRegistry& registry, double tol,
+                     double grow);
+
 }  // namespace mc

@@ -28,7 +28,8 @@ struct PreprocessParams {
   // hair-close vertices all keep at least this distance (model units: 2 x a 1 mm output grid),
   // when at least 20% of the cell is mislabelled. 0 = never.
   double min_gap = 0.002;
-  // Fitted planes sharing an input corner (4+ planes) are made to meet there exactly
+  // Fitted planes sharing an input corner (4+ planes) are made to meet there exactly, and a missing
+  // face's plane passing a hair from the line of two fitted planes goes through that line
   // (core/corner_snap.hpp). false = the paper's behaviour (planes as fitted).
   bool snap_corners = true;
   int oracle_rays = 5;  // rays per point for the inside/outside majority vote

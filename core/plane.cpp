@@ -71,6 +71,15 @@ void PlaneRegistry::set_anchor(uint32_t id, const std::array<uint32_t, 3>& via, 
   planes_[id].d = d == 0 ? 0.0 : d;
 }
 
+void PlaneRegistry::set_line_anchor(uint32_t id, uint32_t a, uint32_t b, const Plane& line) {
+  if (id >= planes_.size() || a >= planes_.size() || b >= planes_.size() || a == id || b == id || a == b)
+    throw std::invalid_argument("set_line_anchor: bad planes");
+  if (anchor(id)) throw std::invalid_argument("set_line_anchor: the plane is anchored to a point");
+  if (line_anchors_.size() < planes_.size()) line_anchors_.resize(planes_.size(), {UINT32_MAX, UINT32_MAX});
+  line_anchors_[id] = {a, b};
+  planes_[id] = line;
+}
+
 size_t PlaneRegistry::num_anchored() const {
   size_t n = 0;
   for (const auto& a : anchors_) n += a[0] != UINT32_MAX;

@@ -75,10 +75,21 @@ class PlaneRegistry {
   }
   size_t num_anchored() const;
 
+  // Anchors plane `id` to the line where planes `a` and `b` meet: exact consumers build it through
+  // that exact line, turned about it to be as near `id`'s normal as the line allows (a plane that
+  // passes a hair from such a line then contains it; docs/algorithm.md §7.4). `line` is the new
+  // double plane, for measurements. Must happen before a complex uses the plane.
+  void set_line_anchor(uint32_t id, uint32_t a, uint32_t b, const Plane& line);
+  // The two planes of `id`'s line anchor, or nullptr.
+  const std::array<uint32_t, 2>* line_anchor(uint32_t id) const {
+    return id < line_anchors_.size() && line_anchors_[id][0] != UINT32_MAX ? &line_anchors_[id] : nullptr;
+  }
+
  private:
   std::vector<Plane> planes_;
   std::vector<PlaneOrigin> origins_;
-  std::vector<std::array<uint32_t, 3>> anchors_;  // UINT32_MAX = none
+  std::vector<std::array<uint32_t, 3>> anchors_;       // UINT32_MAX = none
+  std::vector<std::array<uint32_t, 2>> line_anchors_;  // UINT32_MAX = none
 };
 
 }  // namespace mc

@@ -97,6 +97,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     return id;
   };
   std::vector<uint32_t> region_plane;
+  std::vector<uint32_t> missing_face_plane;  // hole and open-boundary planes, with their boxes
+  std::vector<BBox> missing_face_box;
   for (const auto& r : regions) region_plane.push_back(add_carve_plane(r.plane, r.bbox, r.semantic, r.area));
   // Fitted planes that share an input corner meet there exactly (else the carving may refuse
   // one of them at a hair-close vertex); the tolerance is that hair.
@@ -105,7 +107,9 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // Planes of the input's holes (missing faces), after the regions; a virtual face.
   const std::vector<HolePlane> holes = hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z);
   for (const HolePlane& h : holes) {
-    add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area);
+    missing_face_plane.push_back(
+        add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area));
+    missing_face_box.push_back(h.bbox);
     ++out.hole_planes;
   }
   // Open inputs (missing walls, grounds, roofs): the vertical planes of their open boundary,
@@ -165,10 +169,17 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
           break;
         }
       if (known) continue;
-      add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area);
+      missing_face_plane.push_back(
+          add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area));
+      missing_face_box.push_back(h.bbox);
       ++out.boundary_wall_planes;
     }
   }
+  // A missing face's plane that passes a hair from the line of two region planes would be refused
+  // by the hair rule wherever that line bounds a cell: it is anchored on the line (§7.4).
+  if (p.snap_corners)
+    out.anchored_planes += snap_to_lines(missing_face_plane, missing_face_box, region_plane, *out.planes,
+                                         0.1 * out.dist, out.dist);
   // The input's lowest level, offered last: caps open bottoms (walls and roof without a floor),
   // which would otherwise leave the cell hanging down to the padded box.
   BBox ground_box = out.box;

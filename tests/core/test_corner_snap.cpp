@@ -115,6 +115,64 @@ TEST(CornerSnap, RegistryRejectsBadAnchorsAndTheComplexRejectsCycles) {
   EXPECT_THROW(CellComplex(reg, b), std::logic_error);
 }
 
+// A missing wall's plane (not fitted: it goes through input edges) passing 1.9 mm from the line
+// where two fitted walls' planes meet (the tile's 0503100000020703 with its party walls removed):
+// the carving's hair rule would refuse it wherever that line bounds a cell. Line snapping anchors
+// it on the line; in the exact complex every vertex on the line is then on the plane, and the
+// plane moved by no more than the 1.9 mm. Lines not parallel to it, beyond the tolerance, or
+// outside its box are left alone.
+TEST(CornerSnap, MissingFacePlaneSnapsToAHairLine) {
+  PlaneRegistry reg;
+  // Two vertical walls meeting in the line x = 0, y = 0.0019 (tilted a little, as fitted planes
+  // are), and the missing wall y = 0 along x.
+  Plane a{normalized(Vec3{1, 0.02, 1e-17}), 0};
+  a.d = -dot(a.n, Vec3{0, 0.0019, 0});
+  Plane b{normalized(Vec3{0.3, 1, -2e-17}), 0};
+  b.d = -dot(b.n, Vec3{0, 0.0019, 0});
+  const uint32_t ia = reg.add(a), ib = reg.add(b);
+  const uint32_t ground = reg.add({{0, 0, 1}, 0});
+  const uint32_t missing = reg.add({{0, 1, 0}, 0});
+  BBox where;  // the missing wall's box: x 0..8, y 0, z 0..6
+  where.add({0, 0, 0});
+  where.add({8, 0, 6});
+  EXPECT_EQ(snap_to_lines({missing}, {where}, {ia, ib, ground}, reg, 0.0025, 0.01), 1u);
+  ASSERT_NE(reg.line_anchor(missing), nullptr);
+  EXPECT_NEAR(reg[missing].signed_distance({0, 0.0019, 3}), 0.0, 1e-12);
+  EXPECT_NEAR(std::abs(reg[missing].n.y), 1.0, 1e-9);
+  // In the exact complex: split by both walls, then every vertex on their line is on the plane.
+  BBox box;
+  box.add({-2, -2, -1});
+  box.add({10, 5, 7});
+  CellComplex cx(reg, box);
+  for (uint32_t p : {ia, ib}) {
+    std::vector<uint32_t> cells = cx.live_cells();
+    for (uint32_t c : cells) cx.split(c, p);
+  }
+  size_t on_line = 0;
+  for (uint32_t v = 0; v < cx.num_vertices(); ++v) {
+    if (cx.vertex_side(v, ia) || cx.vertex_side(v, ib)) continue;
+    EXPECT_EQ(cx.vertex_side(v, missing), 0);
+    ++on_line;
+  }
+  EXPECT_EQ(on_line, 2u);  // where the line meets the box's bottom and top
+
+  // Left alone: a plane 5 mm from the line (beyond 2.5 mm), a line outside the box, and a line
+  // not parallel to the plane (a roof meeting a wall).
+  PlaneRegistry far;
+  const uint32_t fa = far.add(a), fb = far.add(b), fm = far.add({{0, 1, 0}, 0.005 - 0.0019});
+  EXPECT_EQ(snap_to_lines({fm}, {where}, {fa, fb}, far, 0.0025, 0.01), 0u);
+  BBox elsewhere;
+  elsewhere.add({3, 0, 0});
+  elsewhere.add({8, 0, 6});
+  PlaneRegistry out;
+  const uint32_t oa = out.add(a), ob = out.add(b), om = out.add({{0, 1, 0}, 0});
+  EXPECT_EQ(snap_to_lines({om}, {elsewhere}, {oa, ob}, out, 0.0025, 0.01), 0u);
+  PlaneRegistry slanted;
+  const uint32_t sa = slanted.add(a), sr = slanted.add({normalized(Vec3{0, 1, 1}), -0.0019 / std::sqrt(2.0)});
+  const uint32_t sm = slanted.add({{0, 1, 0}, 0});
+  EXPECT_EQ(snap_to_lines({sm}, {where}, {sa, sr}, slanted, 0.0025, 0.01), 0u);
+}
+
 // Real inputs whose fitted planes share corners: a 3D BAG building (automatic resolution) and
 // sample22 (its paper parameters). Preprocessing anchors planes there, the cell stays a closed
 // 2-manifold, and in the carved complex every anchored plane passes exactly through each vertex
