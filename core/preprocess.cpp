@@ -24,6 +24,9 @@ namespace mc {
 Vec3 Preprocessed::to_input(const Vec3& p) const { return from_z_up(p + offset, up_axis); }
 
 namespace {
+// The volume agreement open models are held to (docs/algorithm.md §6.5; the open variants' 2 %).
+constexpr double kOpenRelabel = 0.02;
+
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -322,7 +325,12 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   Labelling chosen = label(first_vertical);
   vc.oracle = first_vertical ? "vertical" : "parity";
   auto off = [&](double v) { return vc.estimate > 0 ? std::abs(v / vc.estimate - 1) : 0.0; };
-  const bool disagrees = p.volume_check > 0 && vc.estimate > 0 && off(chosen.volume) > p.volume_check;
+  // An open input's cell is investigated sooner than it is reported: its first labelling is the
+  // vertical vote, the same vote the estimate integrates, so a cell more than kOpenRelabel off it
+  // lost or gained volume in the carving (a missing wall's plane kept out of some cells), and the
+  // parity labelling of the same planes may do better; the closer one is kept (§6.5).
+  const double investigate = out.open_input ? std::min(p.volume_check, kOpenRelabel) : p.volume_check;
+  const bool disagrees = p.volume_check > 0 && vc.estimate > 0 && off(chosen.volume) > investigate;
   // The second labelling uses the other oracle. The parity vote may always replace the vertical
   // one (the estimate is then independent of it). The vertical vote replaces parity only where it
   // is applicable and the estimate does not come from the vertical vote itself: the input is open,

@@ -309,6 +309,33 @@ TEST(OpenModels, MissingWallPlaneIsSnappedToTheLineItPassesAHairFrom) {
   fs::remove_all(dir);
 }
 
+// Real data: the tile's largest open case, 0503100000032914 (1,784 faces) with 30 % of its walls
+// removed (variant d). The vertical labelling's cell was 4.8 % under the vertical columns'
+// estimate (a block of the east wing left out), inside the 5 % that is reported, so it was
+// written as it was. An open input is now labelled again beyond 2 % (§6.5), and the parity cell
+// is within 1 % of the closed original's.
+TEST(OpenModels, AnOpenCellTwoPercentOffItsEstimateIsLabelledAgain) {
+  const std::string tile =
+      source("../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json");
+  if (!fs::exists(tile)) GTEST_SKIP() << "shared data not found: " << tile;
+  const fs::path dir = fs::path(MC_BINARY_DIR) / ("open_models_d_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + tile + " " +
+                          dir.string() + " --seed 19 --variants d --no-ajv > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::string id = "NL.IMBAG.Pand.0503100000032914";
+  const double ref = only_volume(cells_of(tile, {id}));
+  const auto var = cells_of((dir / "3dbag_v210908_fd2cee53_5910.v20.d.city.json").string(), {id});
+  ASSERT_EQ(var.size(), 1u);
+  const Cell& c = var.begin()->second;
+  EXPECT_TRUE(c.open);
+  EXPECT_TRUE(c.check.relabelled);
+  EXPECT_EQ(c.check.oracle, "parity");
+  EXPECT_NEAR(c.volume / ref, 1.0, 0.01) << c.info;
+  EXPECT_FALSE(c.check.flagged);
+  fs::remove_all(dir);
+}
+
 // Real data: a DH building of three parts on a slope whose walls start at 5.76, 6.06 and 6.16 m,
 // with its ground surfaces removed (variant c). Without floors the vertical vote stood every
 // column on the lowest height, and the two higher parts gained the air beneath them (+2.2 % of
