@@ -65,6 +65,20 @@ std::map<std::string, Cell> cells_of(const std::string& path, const std::set<std
   return out;
 }
 
+// The open variants of `file` (tools/gen_open_variants.py --seed 19, `variants` e.g. "a,b,c") in a
+// fresh directory under the build tree named after `tag`; empty when the generator fails.
+fs::path open_variants(const std::string& file, const std::string& variants, const std::string& tag) {
+  const fs::path dir = fs::path(MC_BINARY_DIR) / (tag + "_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + file + " " +
+                          dir.string() + " --seed 19 --variants " + variants + " --no-ajv > /dev/null";
+  if (std::system(cmd.c_str()) != 0) {
+    ADD_FAILURE() << cmd;
+    return {};
+  }
+  return dir;
+}
+
 double only_volume(const std::map<std::string, Cell>& cells) {
   EXPECT_EQ(cells.size(), 1u);
   return cells.empty() ? 0 : cells.begin()->second.volume;
@@ -225,11 +239,8 @@ TEST(OpenModels, ThreeDBagVariantsKeepTheOriginalVolume) {
   const std::string tile =
       source("../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json");
   if (!fs::exists(tile)) GTEST_SKIP() << "shared data not found: " << tile;
-  const fs::path dir = fs::path(MC_BINARY_DIR) / ("open_models_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + tile + " " +
-                          dir.string() + " --seed 19 --variants a,b,c --no-ajv > /dev/null";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const fs::path dir = open_variants(tile, "a,b,c", "open_models");
+  ASSERT_FALSE(dir.empty());
   const std::set<std::string> ids = {
       "NL.IMBAG.Pand.0503100000020594", "NL.IMBAG.Pand.0503100000020515", "NL.IMBAG.Pand.0503100000020426",
       "NL.IMBAG.Pand.0503100000020424", "NL.IMBAG.Pand.0503100000021001", "NL.IMBAG.Pand.0503100000018414",
@@ -268,11 +279,8 @@ TEST(OpenModels, GapUnderTheWallsIsNotAHorizontalFace) {
   const std::string tile =
       source("../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json");
   if (!fs::exists(tile)) GTEST_SKIP() << "shared data not found: " << tile;
-  const fs::path dir = fs::path(MC_BINARY_DIR) / ("open_models_e_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + tile + " " +
-                          dir.string() + " --seed 19 --variants e --no-ajv > /dev/null";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const fs::path dir = open_variants(tile, "e", "open_models_e");
+  ASSERT_FALSE(dir.empty());
   const std::set<std::string> ids = {"NL.IMBAG.Pand.0503100000004247", "NL.IMBAG.Pand.0503100000025484",
                                      "NL.IMBAG.Pand.0503100000020433"};
   const auto ref = cells_of(tile, ids);
@@ -295,11 +303,8 @@ TEST(OpenModels, GapUnderTheWallsIsNotAHorizontalFace) {
 TEST(OpenModels, MissingWallPlaneIsSnappedToTheLineItPassesAHairFrom) {
   const std::string file = source("../shared/datasets/cityjson/cjio/rotterdam/rotterdam_subset.json");
   if (!fs::exists(file)) GTEST_SKIP() << "shared data not found: " << file;
-  const fs::path dir = fs::path(MC_BINARY_DIR) / ("line_snap_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + file + " " +
-                          dir.string() + " --seed 19 --variants c --no-ajv > /dev/null";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const fs::path dir = open_variants(file, "c", "line_snap");
+  ASSERT_FALSE(dir.empty());
   const std::string id = "{23D8CA22-0C82-4453-A11E-B3F2B3116DB4}";
   const double ref = only_volume(cells_of(file, {id}));
   const auto var = cells_of((dir / "rotterdam_subset.c.city.json").string(), {id});
@@ -318,11 +323,8 @@ TEST(OpenModels, AnOpenCellTwoPercentOffItsEstimateIsLabelledAgain) {
   const std::string tile =
       source("../shared/datasets/cityjson/upgraded-2.0/3dbag_v210908_fd2cee53_5910.v20.city.json");
   if (!fs::exists(tile)) GTEST_SKIP() << "shared data not found: " << tile;
-  const fs::path dir = fs::path(MC_BINARY_DIR) / ("open_models_d_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + tile + " " +
-                          dir.string() + " --seed 19 --variants d --no-ajv > /dev/null";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const fs::path dir = open_variants(tile, "d", "open_models_d");
+  ASSERT_FALSE(dir.empty());
   const std::string id = "NL.IMBAG.Pand.0503100000032914";
   const double ref = only_volume(cells_of(tile, {id}));
   const auto var = cells_of((dir / "3dbag_v210908_fd2cee53_5910.v20.d.city.json").string(), {id});
@@ -343,11 +345,8 @@ TEST(OpenModels, AnOpenCellTwoPercentOffItsEstimateIsLabelledAgain) {
 TEST(OpenModels, PartsOnHigherGroundWithoutAGroundStandOnTheirWalls) {
   const std::string file = source("../shared/datasets/cityjson/upgraded-2.0/DH_01_subs.v20.city.json");
   if (!fs::exists(file)) GTEST_SKIP() << "shared data not found: " << file;
-  const fs::path dir = fs::path(MC_BINARY_DIR) / ("open_bottoms_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string cmd = "python3 " + source("tools/gen_open_variants.py") + " " + file + " " +
-                          dir.string() + " --seed 19 --variants c --no-ajv > /dev/null";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const fs::path dir = open_variants(file, "c", "open_bottoms");
+  ASSERT_FALSE(dir.empty());
   const std::string id = "GUID_13974D93-CB4F-4B5A-AB1E-577DD9928CF2";
   const double ref = only_volume(cells_of(file, {id}));
   io::CityJsonReader r((dir / "DH_01_subs.v20.c.city.json").string());
