@@ -77,7 +77,7 @@ class PlaneRegistry {
 
   // Anchors plane `id` to the line where planes `a` and `b` meet: exact consumers build it through
   // that exact line, turned about it to be as near `id`'s normal as the line allows (a plane that
-  // passes a hair from such a line then contains it; docs/algorithm.md §7.4). `line` is the new
+  // passes a hair from such a line then contains it; docs/algorithm.md §4). `line` is the new
   // double plane, for measurements. Must happen before a complex uses the plane.
   void set_line_anchor(uint32_t id, uint32_t a, uint32_t b, const Plane& line);
   // The two planes of `id`'s line anchor, or nullptr.

@@ -179,7 +179,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     }
   }
   // A missing face's plane that passes a hair from the line of two region planes would be refused
-  // by the hair rule wherever that line bounds a cell: it is anchored on the line (§7.4).
+  // by the hair rule wherever that line bounds a cell: it is anchored on the line (§4, §7.4).
   if (p.snap_corners)
     out.anchored_planes += snap_to_lines(missing_face_plane, missing_face_box, region_plane, *out.planes,
                                          0.1 * out.dist, out.dist);

@@ -233,7 +233,7 @@ TEST(OpenModels, AFlaggedDisagreementReachesTheBuildingAndTheReport) {
 // (a) with the parity oracle alone (measured at 2ba24a3), and in (b) the parity oracle found no
 // interior in 373 of the tile's 429 buildings; then come a detached house and a corner house.
 // The last one (20703) was +3.7 % in (a): the missing south wall's plane passed 1.9 mm from the
-// line where two jogs' planes meet and the hair rule kept it out (line snapping, §7.4).
+// line where two jogs' planes meet and the hair rule kept it out (line snapping, §4).
 // MC_OPEN_DEBUG=1 prints every cell, estimate and oracle.
 TEST(OpenModels, ThreeDBagVariantsKeepTheOriginalVolume) {
   const std::string tile =
@@ -299,7 +299,7 @@ TEST(OpenModels, GapUnderTheWallsIsNotAHorizontalFace) {
 // Real data: a Rotterdam house with its ground removed (variant c). At the roof's corner the
 // missing gable wall's plane passed 0.2 mm from the line where the two side walls' fitted planes
 // meet; the hair rule kept it out of every cell there and a 14 m³ wedge beyond the gable stayed
-// inside (+4.3 %). Anchored on that line, the wall is carved (docs/algorithm.md §7.4).
+// inside (+4.3 %). Anchored on that line, the wall is carved (line snapping, docs/algorithm.md §4).
 TEST(OpenModels, MissingWallPlaneIsSnappedToTheLineItPassesAHairFrom) {
   const std::string file = source("../shared/datasets/cityjson/cjio/rotterdam/rotterdam_subset.json");
   if (!fs::exists(file)) GTEST_SKIP() << "shared data not found: " << file;
