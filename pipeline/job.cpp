@@ -162,16 +162,20 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
       return e;
     }
   }
-  // A part repaired on its own may have changed a face it shares: both copies made the same again.
-  if (conforming) {
+  // A part repaired on its own may have changed a face it shares: both copies made the same again
+  // (repairs are rare: nothing to do, and nothing copied, without one).
+  const bool any_repaired =
+      std::any_of(solids.begin(), solids.end(), [](const EncodedSolid& s) { return s.repaired; });
+  if (conforming && any_repaired) {
     std::vector<std::vector<GridFace>> faces;
     std::vector<bool> repaired;
     for (EncodedSolid& solid : solids) {
-      faces.push_back(solid.faces);
+      faces.push_back(std::move(solid.faces));
       repaired.push_back(solid.repaired);
     }
-    for (size_t k : align_shared_faces(faces, repaired, pool.vertices())) {
-      solids[k].faces = std::move(faces[k]);
+    const std::vector<size_t> changed = align_shared_faces(faces, repaired, pool.vertices());
+    for (size_t k = 0; k < solids.size(); ++k) solids[k].faces = std::move(faces[k]);
+    for (size_t k : changed) {
       write_solid(solids[k], meshes[k].semantic_labels, lod, version);
       solids[k].repaired = true;  // counted with the repaired parts
     }
