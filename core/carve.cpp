@@ -168,22 +168,72 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   std::priority_queue<Entry> queue;
   std::vector<std::vector<uint32_t>> todo(cx.num_cells());  // remaining plane indices per cell
 
+  std::vector<uint64_t> ids;
+  std::vector<Vec3> voted;
+  std::vector<uint8_t> in_batch;
+  // A valid solid's cell that the surface only grazes (CarveParams::surface_enters): the points
+  // in the band along its facets are voted as in a full vote (same ids, so the same labels), and
+  // the first `vote_batch` points beyond the band decide all of those by majority. False (nothing
+  // counted) when the surface does enter the cell.
+  auto grazed_vote = [&](uint32_t c, const std::vector<Vec3>& pts, uint64_t first_id, size_t& in) {
+    std::vector<Plane> outward;
+    for (uint32_t f : cx.cell(c).facets) {
+      Plane pl = cx.planes()[cx.facet(f).plane];
+      if (dot(pl.n, cx.outward_normal(f, c)) < 0) pl = Plane{-pl.n, -pl.d};
+      outward.push_back(pl);
+    }
+    if (p.surface_enters(outward, cx.cell_bbox(c))) return false;
+    voted.clear();
+    ids.clear();
+    in_batch.clear();
+    size_t batch = 0, rest = 0;
+    for (size_t i = 0; i < pts.size(); ++i) {
+      double depth = std::numeric_limits<double>::infinity();
+      for (const Plane& pl : outward) depth = std::min(depth, -pl.signed_distance(pts[i]));
+      const bool in_band = depth <= p.band;
+      if (!in_band && batch == static_cast<size_t>(p.vote_batch)) {
+        ++rest;
+        continue;
+      }
+      batch += !in_band;
+      voted.push_back(pts[i]);
+      ids.push_back(first_id + i);
+      in_batch.push_back(!in_band);
+    }
+    classify(voted, ids, flags);
+    size_t batch_in = 0;
+    for (size_t k = 0; k < flags.size(); ++k) {
+      in += flags[k] != 0;
+      batch_in += in_batch[k] && flags[k];
+    }
+    if (2 * batch_in > batch) in += rest;
+    res.points += voted.size();
+    return true;
+  };
+
   // Votes one cell (`box`: its vertices' box); returns its inconsistent volume.
   auto vote = [&](uint32_t c, const BBox& box) {
     const double v = cx.cell_volume(c);
     const long n = std::clamp<long>(static_cast<long>(std::ceil(v / unit)), p.min_points, p.max_points);
     // A cell the input surface does not touch is entirely inside or outside: a few points
-    // (majority) decide it. Every other cell gets the full vote.
+    // (majority) decide it. A cell it only grazes is voted in a band along its facets. Every
+    // other cell gets the full vote.
     const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
     const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
     const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(box);
     const auto pts = sample_cell(
         cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
-    classify(pts, first_id, flags);
     size_t in = 0;
-    for (uint8_t f : flags) in += f != 0;
-    res.points += pts.size();
-    if (free_cell) in = 2 * in > pts.size() ? pts.size() : 0;  // unanimous by construction
+    const bool grazed =
+        !free_cell && p.surface_enters && p.vote_batch > 0 && grazed_vote(c, pts, first_id, in);
+    if (!grazed) {
+      ids.resize(pts.size());
+      for (size_t i = 0; i < pts.size(); ++i) ids[i] = first_id + i;
+      classify(pts, ids, flags);
+      for (uint8_t f : flags) in += f != 0;
+      res.points += pts.size();
+      if (free_cell) in = 2 * in > pts.size() ? pts.size() : 0;  // unanimous by construction
+    }
     const double r = pts.empty() ? 0.0 : double(in) / pts.size();
     if (inside_label.size() <= c) inside_label.resize(c + 1024, 0);
     inside_label[c] = r > p.inside_vote;

@@ -36,12 +36,19 @@ struct CarveParams {
   double min_gap = 0.002;  // see PreprocessParams::min_gap
   // Whether the input surface touches a box (conservative); null = always full votes.
   std::function<bool(const BBox&)> surface_touches;
+  // For a valid solid (docs/algorithm.md §7.3, "grazed cells"): whether the input surface reaches
+  // deeper than fitting noise into the convex cell {x : n·x + d <= 0 for every outward facet
+  // plane} whose box is given. A cell it does not is uniform except in a band along its facets:
+  // only the sample points within `band` of a facet are voted, and `vote_batch` of the others
+  // decide the rest. Null = every touched cell gets the full vote.
+  std::function<bool(const std::vector<Plane>& outward, const BBox&)> surface_enters;
+  double band = 0;
   uint64_t seed = 1;
 };
 
-// Classifies points (inside = 1); `first_id` seeds per-point ray jitter deterministically.
+// Classifies points (inside = 1); a point's id seeds its ray jitter deterministically.
 using PointClassifier =
-    std::function<void(const std::vector<Vec3>&, uint64_t first_id, std::vector<uint8_t>&)>;
+    std::function<void(const std::vector<Vec3>&, const std::vector<uint64_t>& ids, std::vector<uint8_t>&)>;
 
 struct CarveResult {
   std::vector<uint32_t> inside;  // live inside cells, ascending ids

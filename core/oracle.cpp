@@ -423,6 +423,14 @@ void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id,
   });
 }
 
+void InsideOracle::classify(const std::vector<Vec3>& pts, const std::vector<uint64_t>& ids,
+                            std::vector<uint8_t>& out) const {
+  out.assign(pts.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i], ids[i]) ? 1 : 0;
+  });
+}
+
 }  // namespace mc
 
 namespace mc {

@@ -26,6 +26,9 @@ class InsideOracle {
   bool inside(const Vec3& p, uint64_t point_id) const;
   // out[i] = inside(pts[i], first_id + i), computed in parallel (TBB).
   void classify(const std::vector<Vec3>& pts, uint64_t first_id, std::vector<uint8_t>& out) const;
+  // out[i] = inside(pts[i], ids[i]), computed in parallel (TBB).
+  void classify(const std::vector<Vec3>& pts, const std::vector<uint64_t>& ids,
+                std::vector<uint8_t>& out) const;
 
   // Number of distinct surface crossings along the ray p + t·dir, t > 0 (hits at nearly equal
   // t merged, so a ray through a shared edge counts once). Exposed for tests and diagnostics.

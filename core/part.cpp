@@ -195,15 +195,16 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
     std::sort(by_plane.begin(), by_plane.end());
     for (size_t i = 0; i < lines.size() && !merged; ++i) {
       cand.clear();
+      // Rows before `resume` only pair with the new lines; the others with every later line.
+      const size_t from = i < resume ? std::max(i + 1, first_new) : i + 1;
       for (uint32_t pl : {lines[i].line.p1, lines[i].line.p2}) {
-        auto lo = std::upper_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, i});
+        auto lo = std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
         for (; lo != by_plane.end() && lo->first == pl; ++lo) cand.push_back(lo->second);
       }
       std::sort(cand.begin(), cand.end());
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
       for (size_t ci = 0; ci < cand.size() && !merged; ++ci) {
         const size_t j = cand[ci];
-        if (i < resume && j < first_new) continue;  // checked before the last merge
         ConcaveLine& L1 = lines[i].line;
         ConcaveLine& L2 = lines[j].line;
         if (!lines[i].reflex && !lines[j].reflex) continue;

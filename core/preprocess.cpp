@@ -284,11 +284,20 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     c.surface_touches = [&index, ob](const BBox& b) {
       return index.touches(b) || (ob.overlaps(b) && !ob.contains(b));
     };
+    // A valid solid's cell that the surface reaches at most a hair into (fitting noise of the
+    // faces along its facets) is uniform but for that band (docs/algorithm.md §7.3).
+    if (out.fast_path && !use_vertical && p.grazed_cells) {
+      const double hair = 0.1 * out.dist;
+      c.surface_enters = [&index, hair](const std::vector<Plane>& outward, const BBox& b) {
+        return index.enters(outward, b, hair);
+      };
+      c.band = out.dist;
+    }
     l.carve = carve(
         *l.complex, cps,
-        [&](const std::vector<Vec3>& pts, uint64_t first, std::vector<uint8_t>& flags) {
+        [&](const std::vector<Vec3>& pts, const std::vector<uint64_t>& ids, std::vector<uint8_t>& flags) {
           if (use_vertical) vertical.classify(pts, flags);
-          else oracle.classify(pts, first, flags);
+          else oracle.classify(pts, ids, flags);
         },
         c, deadline);
     l.inside = l.carve.inside;

@@ -244,6 +244,29 @@ TEST(Preprocess, FastPathOnlyForValidSolidsAndSameCell) {
   EXPECT_FALSE(open.fast_path_reason.empty());
 }
 
+// A valid solid's cell that the surface only grazes (fitting noise of a face along one of its
+// facets) is voted in a band along its facets (docs/algorithm.md §7.3): on two real 3D BAG
+// buildings (CC BY 4.0) at automatic resolution the cell is the same as with the full vote, from
+// at least 30% fewer points.
+TEST(Preprocess, GrazedCellsVotedInABandGiveTheSameCell) {
+  for (const char* name : {"3dbag_0503100000004560.off", "3dbag_0503100000018414.off"}) {
+    SCOPED_TRACE(name);
+    const PolygonMesh m = test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/" + name);
+    PreprocessParams p;
+    p.compute_hausdorff = false;
+    const auto deadline = Clock::now() + std::chrono::seconds(60);
+    const Preprocessed band = preprocess(m, p, deadline);
+    p.grazed_cells = false;
+    const Preprocessed full = preprocess(m, p, deadline);
+    ASSERT_TRUE(band.fast_path) << band.fast_path_reason;
+    EXPECT_EQ(band.cells, full.cells);
+    EXPECT_EQ(band.inside_cells, full.inside_cells);
+    EXPECT_EQ(band.volume_check.cell, full.volume_check.cell);
+    EXPECT_EQ(singleton_mesh(band).vertices, singleton_mesh(full).vertices);
+    EXPECT_LT(band.oracle_points, 0.7 * full.oracle_points);
+  }
+}
+
 TEST(Preprocess, EmptyAndDegenerateInputsThrowClearErrors) {
   PreprocessParams p;
   const auto deadline = Clock::now() + std::chrono::seconds(10);
