@@ -23,6 +23,7 @@ struct PartResult {
   double convexity = 0;              // V / V_CH
   std::vector<uint32_t> neighbours;  // indices of parts of the same level sharing a face
   int component = 0;                 // singleton component the part belongs to
+  bool operator==(const PartResult&) const = default;
 };
 
 struct LevelResult {

@@ -219,6 +219,27 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   return e;
 }
 
+// A level whose parts are the parts of the level encoded before it is encoded exactly as that one
+// (the same meshes, vertices already in the pool, the same checks and repairs): its encoding is
+// that level's under its own ids, level and neighbour ids. Most small buildings keep their parts
+// over several levels (docs/benchmarks.md, "Speed").
+EncodedLevel relabelled(const EncodedLevel& previous, const std::string& building, size_t i, double threshold,
+                        const std::vector<PartResult>& parts) {
+  EncodedLevel e = previous;
+  e.lv.index = i;
+  e.lv.threshold = threshold;
+  e.check_seconds = 0;
+  for (size_t j = 0; j < e.staged.size(); ++j) {
+    e.staged[j].id = part_id(building, i, j);
+    json& a = e.staged[j].object["attributes"];
+    a["morphcut_level"] = threshold;
+    json neighbours = json::array();
+    for (uint32_t n : parts[j].neighbours) neighbours.push_back(part_id(building, i, n));
+    a["neighbours"] = std::move(neighbours);
+  }
+  return e;
+}
+
 // A level's parts encoded on the output grid, as meshes that fit their neighbours exactly
 // (level_part_meshes). When a part stays invalid after its own repairs (pipeline/part_repair.hpp):
 //   1. the level's vertices are clustered ever more coarsely (vertices within 1, 2, then 4 grid
@@ -329,13 +350,18 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   const std::vector<PartResult>* last_good = nullptr;  // the parts of the last level written
   std::vector<std::string> notes;                      // why the result is partial
   bool fell_back = false;
+  // The last level encoded, before its massing attributes, with its parts (`relabelled`).
+  std::optional<std::pair<EncodedLevel, const std::vector<PartResult>*>> reusable;
   for (size_t i = 0; i < p.dec.levels.size(); ++i) {
     if (!writes_level(rc, i)) continue;
     const LevelSource src = source_for(dec, i);
     const std::vector<PartResult>* parts = src.result ? &src.result->parts : &singleton;
     std::string fallback = src.fallback;
     const size_t mark = pool.mark();
-    EncodedLevel e = encode_level_on_grid(out.id, i, p.dec.levels[i], *parts, pre, lod, h.version, pool);
+    const bool same_parts = reusable && *parts == *reusable->second;
+    EncodedLevel e =
+        same_parts ? relabelled(reusable->first, out.id, i, p.dec.levels[i], *parts)
+                   : encode_level_on_grid(out.id, i, p.dec.levels[i], *parts, pre, lod, h.version, pool);
     out.time.check += e.check_seconds;
     if (!e.defect.empty()) {
       // A part that is not a valid solid (core's part mesh has a non-manifold edge) is never
@@ -381,6 +407,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     out.size.parts_repaired += e.repaired_parts;
     out.size.split_faces += e.split_faces;
     lv.grid_repair = e.grid_repair;
+    if (fallback.empty() && e.grid_repair.empty()) reusable.emplace(e, parts);
+    else reusable.reset();
     {  // massing analytics (pipeline/massing.hpp, docs/massing.md): roles and contacts as part attributes
       const auto tm = Clock::now();
       const bool own = e.grid_repair == "non-conforming";  // those meshes carry no neighbours

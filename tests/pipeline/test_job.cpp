@@ -73,7 +73,11 @@ TEST(Job, DecomposesA3dBagBuildingIntoClosedParts) {
       const double c = part["attributes"]["convexity"].get<double>();
       EXPECT_GT(c, 0.5);
       EXPECT_LE(c, 1.0);
-      for (const auto& n : part["attributes"]["neighbours"]) EXPECT_TRUE(objs.contains(n.get<std::string>()));
+      const std::string level_prefix = b.id + "-mc" + std::to_string(l.index) + "-";
+      for (const auto& n : part["attributes"]["neighbours"]) {
+        EXPECT_TRUE(objs.contains(n.get<std::string>()));
+        EXPECT_TRUE(n.get<std::string>().starts_with(level_prefix)) << n;  // a part of the same level
+      }
       ASSERT_EQ(part["geometry"].size(), 1u);
       const json& g = part["geometry"][0];
       EXPECT_EQ(g["lod"], "2.2");
@@ -105,6 +109,44 @@ TEST(Job, DecomposesA3dBagBuildingIntoClosedParts) {
   EXPECT_EQ(b.measures.footprint_method, "ground");
   EXPECT_GT(*b.measures.footprint_area, 10.0);
   EXPECT_GT(*b.measures.height, 2.0);
+}
+
+// A level with the same parts as the level before it is that level's encoding under its own ids
+// (job.cpp, `relabelled`): the same geometry, its own level, index and neighbour ids.
+TEST(Job, ALevelWithTheSamePartsAsTheLastIsWrittenUnderItsOwnIds) {
+  MC_REQUIRE_DATA(path, "cjseq/3dbag_b2.city.json");
+  mc::io::Header h;
+  auto features = read_all(path, h);
+  const Params p = mc::test::default_config().params;
+  size_t repeated = 0;
+  for (const auto& input : features) {
+    const BuildingOutcome b = run_building(input, h, p, RunConfig{});
+    ASSERT_EQ(b.status, "ok") << b.reason;
+    const json& objs = b.feature.objects;
+    auto id = [&](size_t level, size_t j) {
+      return b.id + "-mc" + std::to_string(level) + "-" + std::to_string(j);
+    };
+    for (size_t k = 1; k < b.levels.size(); ++k) {
+      const LevelOutcome &prev = b.levels[k - 1], &l = b.levels[k];
+      if (l.parts != prev.parts || l.cost != prev.cost) continue;
+      ++repeated;
+      for (size_t j = 0; j < l.parts; ++j) {
+        const json& a = objs.at(id(prev.index, j));
+        const json& c = objs.at(id(l.index, j));
+        EXPECT_EQ(c["geometry"], a["geometry"]);
+        EXPECT_EQ(c["attributes"]["morphcut_level"], l.threshold);
+        EXPECT_EQ(c["attributes"]["morphcut_index"], j);
+        ASSERT_EQ(c["attributes"]["neighbours"].size(), a["attributes"]["neighbours"].size());
+        for (size_t n = 0; n < a["attributes"]["neighbours"].size(); ++n) {
+          std::string expected = a["attributes"]["neighbours"][n].get<std::string>();
+          const std::string from = "-mc" + std::to_string(prev.index) + "-";
+          expected.replace(expected.rfind(from), from.size(), "-mc" + std::to_string(l.index) + "-");
+          EXPECT_EQ(c["attributes"]["neighbours"][n], expected);
+        }
+      }
+    }
+  }
+  EXPECT_GT(repeated, 0u);  // the two houses keep their parts over some levels
 }
 
 TEST(Job, RunningOnItsOwnOutputGivesTheSameParts) {
