@@ -177,29 +177,35 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
 // (convex + reflex within δ) becomes a ≈180° line that is then dropped; two shallow reflex
 // edges around a chamfer add up into one stronger line.
 void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
+  // Lines keep their index for the whole merge: a merged pair is marked dead and its replacements
+  // are appended, so the live lines in index order are the list a rebuilt vector would hold, and
+  // the plane index is built once (new lines go to `added`).
+  std::vector<uint8_t> alive(lines.size(), 1);
+  std::vector<std::pair<uint32_t, size_t>> by_plane;  // (plane, line) of the first lines, sorted
+  for (size_t k = 0; k < lines.size(); ++k) {
+    by_plane.emplace_back(lines[k].line.p1, k);
+    by_plane.emplace_back(lines[k].line.p2, k);
+  }
+  std::sort(by_plane.begin(), by_plane.end());
+  std::vector<std::pair<uint32_t, size_t>> added;  // (plane, line) of the lines appended since
   std::vector<size_t> cand;
-  std::vector<std::pair<uint32_t, size_t>> by_plane;
   // After a merge at (i, j) the scan starts again from the first pair, but every pair of lines
   // that were both there before and whose first line came before i was found not to merge (a
   // pure function of the two lines): those rows only look at the new lines (from `first_new`).
   size_t resume = 0, first_new = 0;
   for (int guard = 0; guard < 1000; ++guard) {
     bool merged = false;
-    // Only lines sharing a plane can merge: index them by plane (ascending positions, so the
-    // first mergeable pair in (i, j) order is the same as a scan of all pairs would find).
-    by_plane.clear();  // (plane, line), sorted
-    for (size_t k = 0; k < lines.size(); ++k) {
-      by_plane.emplace_back(lines[k].line.p1, k);
-      by_plane.emplace_back(lines[k].line.p2, k);
-    }
-    std::sort(by_plane.begin(), by_plane.end());
     for (size_t i = 0; i < lines.size() && !merged; ++i) {
+      if (!alive[i]) continue;
       cand.clear();
       // Rows before `resume` only pair with the new lines; the others with every later line.
       const size_t from = i < resume ? std::max(i + 1, first_new) : i + 1;
       for (uint32_t pl : {lines[i].line.p1, lines[i].line.p2}) {
         auto lo = std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
-        for (; lo != by_plane.end() && lo->first == pl; ++lo) cand.push_back(lo->second);
+        for (; lo != by_plane.end() && lo->first == pl; ++lo)
+          if (alive[lo->second]) cand.push_back(lo->second);
+        for (const auto& [q, k] : added)
+          if (q == pl && k >= from && alive[k]) cand.push_back(k);
       }
       std::sort(cand.begin(), cand.end());
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
@@ -247,34 +253,42 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
         M.n1 = b < c ? nb : nc;
         M.n2 = b < c ? nc : nb;
         M.angle = L1.angle + L2.angle - M_PI;
-        // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were.
-        std::vector<RawLine> next;
-        for (size_t k = 0; k < lines.size(); ++k)
-          if (k != i && k != j) next.push_back(lines[k]);
-        for (const RawLine* src : {&lines[i], &lines[j]}) {
+        // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were; the
+        // pieces and the merged line are appended (L1 and L2 are not used from here on).
+        const size_t before = lines.size();
+        for (const size_t src : {i, j}) {
           double lo, hi;
-          extent(src->line, lo, hi);
+          extent(lines[src].line, lo, hi);
           auto keep_piece = [&](double s0, double s1) {
             if (s1 - s0 <= delta) return;
-            RawLine r = *src;
+            RawLine r = lines[src];
             const double u0 = dot(M.point + M.dir * s0 - r.line.point, r.line.dir);
             const double u1 = dot(M.point + M.dir * s1 - r.line.point, r.line.dir);
             r.line.t0 = std::min(u0, u1);
             r.line.t1 = std::max(u0, u1);
-            next.push_back(r);
+            lines.push_back(r);
           };
           keep_piece(lo, std::min(hi, M.t0));
           keep_piece(std::max(lo, M.t1), hi);
         }
-        next.push_back({M, M.angle > M_PI});
+        lines.push_back({M, M.angle > M_PI});
+        alive[i] = alive[j] = 0;
+        alive.resize(lines.size(), 1);
+        for (size_t k = before; k < lines.size(); ++k) {
+          added.emplace_back(lines[k].line.p1, k);
+          added.emplace_back(lines[k].line.p2, k);
+        }
         resume = i;
-        first_new = lines.size() - 2;
-        lines = std::move(next);
+        first_new = before;
         merged = true;
       }
     }
-    if (!merged) return;
+    if (!merged) break;
   }
+  size_t kept = 0;
+  for (size_t k = 0; k < lines.size(); ++k)
+    if (alive[k]) lines[kept++] = std::move(lines[k]);
+  lines.resize(kept);
 }
 
 // Distance from s along unit b to the boundary of the convex hull (closed form over facets).
