@@ -79,6 +79,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
   double total_volume = 0;
   for (const auto& c : pre.components) total_volume += c.volume;
 
+  HullCache hulls;  // every analysis of this building's parts (core/hull_cache.hpp)
   // Whole-building normalisers from the singleton cell R (all components together).
   Objective obj = Objective::of_root(0, 0, p);
   {
@@ -86,8 +87,9 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     for (const LevelPart& w : work) all.insert(all.end(), w.cells.begin(), w.cells.end());
     std::sort(all.begin(), all.end());
     const CellSpace space = make_space(cx, all);
-    const PartAnalysis r = analyze_part(
-        space, space.all(), make_context(pre, p, p.levels.empty() ? 0 : p.levels.front()), kNoNewPlanes);
+    AnalysisContext root_ctx = make_context(pre, p, p.levels.empty() ? 0 : p.levels.front());
+    root_ctx.hulls = &hulls;
+    const PartAnalysis r = analyze_part(space, space.all(), root_ctx, kNoNewPlanes);
     out.concave_edges = r.e_all;
     obj = Objective::of_root(r.e_all, r.delta, p);
   }
@@ -103,7 +105,8 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     // §13, docs/design.md "A wider first level").
     DecomposeParams level_params = p;
     if (li == 0 && p.first_level_candidates >= 0) level_params.max_candidates = p.first_level_candidates;
-    const AnalysisContext ctx = make_context(pre, level_params, level.lod);
+    AnalysisContext ctx = make_context(pre, level_params, level.lod);
+    ctx.hulls = &hulls;
     for (LevelPart& w : work) w.cells = current_leaves(cx, w.cells);
     if (Clock::now() <= deadline) {
       std::vector<PreparedPart> prepared;
@@ -144,7 +147,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       work = std::move(next);
       if (p.revisit_boundaries && li > 0)  // (takes its own copy of prev: the undo below needs it)
         revisit_boundaries(pre, p, prev, work, ctx, obj, deadline, level);
-      if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume);
+      if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume, &hulls);
       if (p.merge_convex_parts) merge_convex_neighbours(pre, work, ctx, obj);
       if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev, work, ctx, obj);
     } else {

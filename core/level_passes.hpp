@@ -16,7 +16,9 @@ void revisit_boundaries(Preprocessed& pre, const DecomposeParams& p, std::vector
                         std::vector<LevelPart>& work, const AnalysisContext& ctx, const Objective& obj,
                         Clock::time_point deadline, LevelResult& level);
 // §14.2: parts smaller than v_min merged into a neighbour, smallest first.
-void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min);
+// `hulls` (optional): the building's hull cache.
+void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min,
+                      HullCache* hulls = nullptr);
 // §14.3: neighbouring parts merged while that lowers the level's cost.
 void merge_convex_neighbours(const Preprocessed& pre, std::vector<LevelPart>& work,
                              const AnalysisContext& ctx, const Objective& obj);

@@ -17,7 +17,7 @@ namespace mc::level {
 
 // Merges parts smaller than v_min into a neighbour (docs/algorithm.md §14.2), smallest first;
 // parts without a neighbour they can join stay.
-void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min) {
+void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min, HullCache* hulls) {
   for (int guard = 0; guard < 10000; ++guard) {
     std::unordered_map<uint32_t, uint32_t> owner;
     std::vector<double> vol(parts.size(), 0);
@@ -55,7 +55,7 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
       std::vector<Vec3> pts;
       pts.reserve(ids.size());
       for (uint32_t v : ids) pts.push_back(cx.point(v));
-      return convex_hull(pts).volume;
+      return hulls ? hulls->get(pts)->volume : convex_hull(pts).volume;
     };
     const double tol = 1e-9 * std::max(1.0, v_min);
     int target = -1;

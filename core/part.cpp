@@ -344,7 +344,9 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
     if (j - i >= 3) pts.push_back(cx.point(static_cast<uint32_t>(vertex_planes[i] >> 32)));
     i = j;
   }
-  const Hull hull = convex_hull(pts);
+  const std::shared_ptr<const Hull> hull_ptr =
+      ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
+  const Hull& hull = *hull_ptr;
   info.hull_volume = hull.volume;
   info.delta = std::max(0.0, info.hull_volume - info.volume);
   if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/complex.hpp"
+#include "core/hull_cache.hpp"
 #include "core/params.hpp"
 
 namespace mc {
@@ -54,11 +55,12 @@ struct ConcaveLine {
 // Settings that fix how parts are analysed at one LoD level.
 struct AnalysisContext {
   const DecomposeParams* dec = nullptr;
-  double dist = 0;       // δ
-  double angle_rad = 0;  // θa
-  double a_diag = 1;     // area of the input box's vertical diagonal plane
-  double level = 0;      // LoD threshold l (significance: weight >= l * a_diag)
-  BBox box;              // the input box (snapping)
+  double dist = 0;             // δ
+  double angle_rad = 0;        // θa
+  double a_diag = 1;           // area of the input box's vertical diagonal plane
+  double level = 0;            // LoD threshold l (significance: weight >= l * a_diag)
+  BBox box;                    // the input box (snapping)
+  HullCache* hulls = nullptr;  // the building's hulls (core/hull_cache.hpp); null = computed each time
 };
 
 // Maps a generated candidate plane (bisector, vertical or horizontal plane through a line) to a

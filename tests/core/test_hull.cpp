@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/hull.hpp"
+#include "core/hull_cache.hpp"
 #include "tests/core/off_fixture.hpp"
 
 namespace mc {
@@ -47,6 +48,32 @@ TEST(Hull, ResultDoesNotDependOnThePointOrder) {
       EXPECT_EQ(h.facets[i].d, first.facets[i].d);
     }
   }
+}
+
+// The building's hull cache (core/hull_cache.hpp): the same point set in another order or with
+// repeated points is a hit, and a hit is bitwise the hull computed afresh; another set misses.
+TEST(Hull, CacheHitsAreTheHullOfTheSamePointSet) {
+  const PolygonMesh m =
+      test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000018414.off");
+  std::vector<Vec3> pts = m.vertices;
+  HullCache cache;
+  const Hull fresh = convex_hull(pts);
+  std::mt19937 rng(3);
+  for (int round = 0; round < 5; ++round) {
+    std::shuffle(pts.begin(), pts.end(), rng);
+    std::vector<Vec3> with_repeats = pts;
+    with_repeats.insert(with_repeats.end(), pts.begin(), pts.begin() + 5);
+    const auto h = cache.get(round % 2 ? with_repeats : pts);
+    EXPECT_EQ(h->volume, fresh.volume);  // bitwise
+    ASSERT_EQ(h->facets.size(), fresh.facets.size());
+    for (size_t i = 0; i < h->facets.size(); ++i) EXPECT_EQ(h->facets[i].d, fresh.facets[i].d);
+  }
+  EXPECT_EQ(cache.misses(), 1u);
+  EXPECT_EQ(cache.hits(), 4u);
+  pts.pop_back();  // another set
+  const auto other = cache.get(pts);
+  EXPECT_EQ(cache.misses(), 2u);
+  EXPECT_EQ(other->volume, convex_hull(pts).volume);
 }
 
 }  // namespace
