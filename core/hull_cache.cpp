@@ -7,7 +7,9 @@ namespace mc {
 
 namespace {
 
-bool less(const Vec3& a, const Vec3& b) { return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z); }
+bool less(const Vec3& a, const Vec3& b) {
+  return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
+}
 
 uint64_t hash_points(const std::vector<Vec3>& pts) {
   uint64_t h = 0xcbf29ce484222325ULL;
@@ -26,7 +28,8 @@ uint64_t hash_points(const std::vector<Vec3>& pts) {
 std::shared_ptr<const Hull> HullCache::get(const std::vector<Vec3>& points) {
   std::vector<Vec3> key = points;
   std::sort(key.begin(), key.end(), less);
-  key.erase(std::unique(key.begin(), key.end(), [](const Vec3& a, const Vec3& b) { return !less(a, b) && !less(b, a); }),
+  key.erase(std::unique(key.begin(), key.end(),
+                        [](const Vec3& a, const Vec3& b) { return !less(a, b) && !less(b, a); }),
             key.end());
   const uint64_t h = hash_points(key);
   {
