@@ -4,6 +4,7 @@
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -41,7 +42,16 @@ struct CellComplex::Exact {
   std::vector<K::Plane_3> planes;
   std::vector<uint8_t> built;  // per plane: 0 not yet, 1 in progress, 2 done
   std::vector<K::Point_3> points;
+  // The three planes each point was built from: it lies on them exactly, which decides its side
+  // of those planes without evaluating the predicate (exactly on a plane, the interval filter
+  // cannot decide and the exact evaluation is the split's main cost).
+  std::vector<std::array<uint32_t, 3>> point_planes;
   std::unordered_map<uint64_t, EdgeInfo> edges;
+  int side(uint32_t v, uint32_t plane) const {
+    const auto& pp = point_planes[v];
+    if (pp[0] == plane || pp[1] == plane || pp[2] == plane) return 0;
+    return sign_of(planes[plane].oriented_side(points[v]));
+  }
 };
 
 CellComplex::CellComplex(PlaneRegistry& planes, const BBox& box)
@@ -132,6 +142,7 @@ uint32_t CellComplex::add_vertex_from_planes(uint32_t p1, uint32_t p2, uint32_t 
   const K::Point_3* pt = res ? boost::get<K::Point_3>(&*res) : nullptr;
   if (!pt) throw std::logic_error("cell complex: three planes do not meet in a point");
   exact_->points.push_back(*pt);
+  exact_->point_planes.push_back({p1, p2, p3});
   points_.push_back({precise_double(pt->x()), precise_double(pt->y()), precise_double(pt->z())});
   return static_cast<uint32_t>(points_.size() - 1);
 }
@@ -190,7 +201,7 @@ void CellComplex::split_edge(uint32_t a, uint32_t b, uint32_t w) {
 
 int CellComplex::vertex_side(uint32_t v, uint32_t plane) const {
   const_cast<CellComplex*>(this)->ensure_planes();
-  return sign_of(exact_->planes[plane].oriented_side(exact_->points[v]));
+  return exact_->side(v, plane);
 }
 
 bool CellComplex::collinear(uint32_t a, uint32_t b, uint32_t c) const {
@@ -212,11 +223,10 @@ int CellComplex::cell_side(uint32_t c, uint32_t plane) const {
 std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t plane) {
   if (c >= cells_.size() || !cells_[c].alive) throw std::logic_error("cell complex: split of a dead cell");
   ensure_planes();
-  const K::Plane_3& P = exact_->planes[plane];
   std::unordered_map<uint32_t, int> side;
   bool pos = false, neg = false;
   for (uint32_t v : cell_vertices(c)) {
-    const int s = sign_of(P.oriented_side(exact_->points[v]));
+    const int s = exact_->side(v, plane);
     side[v] = s;
     pos |= s > 0;
     neg |= s < 0;

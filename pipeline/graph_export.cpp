@@ -6,6 +6,7 @@
 #include "io/atomic_file.hpp"
 #include "io/errors.hpp"
 #include "io/gpkg_writer.hpp"
+#include "pipeline/rounding.hpp"
 #include "pipeline/summary_csv.hpp"
 
 namespace mc::pipeline {
@@ -96,11 +97,11 @@ void MassingGpkgWriter::add(const BuildingOutcome& b) {
       p.role = pm.role;
       p.level = L.threshold;
       p.index = static_cast<int>(j);
-      p.z_min = pm.z_min;
-      p.z_max = pm.z_max;
-      p.volume = pm.volume;
-      p.convexity = pm.convexity;
-      p.footprint_area = pm.footprint_area;
+      p.z_min = rounded(pm.z_min, 1e-6);
+      p.z_max = rounded(pm.z_max, 1e-6);
+      p.volume = rounded(pm.volume, 1e-6);
+      p.convexity = rounded(pm.convexity, 1e-9);
+      p.footprint_area = rounded(pm.footprint_area, 1e-6);
       p.grounded = pm.grounded;
       p.footprint = pm.footprint;
       gpkg_->add_part(p);

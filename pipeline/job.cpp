@@ -18,6 +18,7 @@
 #include "pipeline/measures.hpp"
 #include "pipeline/part_objects.hpp"
 #include "pipeline/part_repair.hpp"
+#include "pipeline/rounding.hpp"
 #include "pipeline/terrain.hpp"
 
 namespace mc::pipeline {
@@ -29,10 +30,6 @@ namespace {
 constexpr size_t kMaxProblems = 20;
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Attribute values are rounded: core's hull volumes vary in the last bits from run to run (even
-// on one thread), and the written files must be byte-identical; 1e-9 is far below any meaning.
-double rounded(double v, double step) { return std::isfinite(v) ? std::round(v / step) * step : v; }
 
 std::string part_id(const std::string& building, size_t level, size_t index) {
   return building + "-mc" + std::to_string(level) + "-" + std::to_string(index);

@@ -121,6 +121,14 @@ def main():
         parts = sum(len(n["nodes"]) for b in lines for n in b["levels"])
         if f"Feature Count: {parts}" not in text:
             fail(f"ogrinfo: parts layer should hold {parts} features:\n{text}")
+        # Part values are written rounded as in the CityJSON attributes (pipeline/rounding.hpp):
+        # volumes to 1e-6 m³, convexities to 1e-9, so their last bits carry no noise.
+        import sqlite3
+        con = sqlite3.connect(gpkg_path)
+        for part, volume, convexity in con.execute("SELECT part, volume, convexity FROM parts"):
+            if abs(volume * 1e6 - round(volume * 1e6)) > 1e-3 or abs(convexity * 1e9 - round(convexity * 1e9)) > 1e-3:
+                fail(f"GeoPackage part {part}: volume {volume!r} or convexity {convexity!r} not rounded")
+        con.close()
         # Deterministic: the second run's files are the same bytes.
         for suffix in (".morphcut.graph.jsonl", ".morphcut.gpkg", ".morphcut.csv"):
             if not filecmp.cmp(outs[0] + suffix, outs[1] + suffix, shallow=False):
