@@ -205,6 +205,14 @@ int CellComplex::vertex_side(uint32_t v, uint32_t plane) const {
 }
 
 bool CellComplex::collinear(uint32_t a, uint32_t b, uint32_t c) const {
+  // Three vertices built on the same two planes lie on their line (two planes of one vertex meet
+  // in a line), again without the predicate that exact collinearity makes expensive.
+  const auto &pa = exact_->point_planes[a], &pb = exact_->point_planes[b], &pc = exact_->point_planes[c];
+  int common = 0;
+  for (uint32_t x : pa)
+    common +=
+        std::find(pb.begin(), pb.end(), x) != pb.end() && std::find(pc.begin(), pc.end(), x) != pc.end();
+  if (common >= 2) return true;
   const auto& p = exact_->points;
   return CGAL::collinear(p[a], p[b], p[c]);
 }
