@@ -175,14 +175,15 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   // in the band along its facets are voted as in a full vote (same ids, so the same labels), and
   // the first `vote_batch` points beyond the band decide all of those by majority. False (nothing
   // counted) when the surface does enter the cell.
-  auto grazed_vote = [&](uint32_t c, const std::vector<Vec3>& pts, uint64_t first_id, size_t& in) {
+  auto grazed_vote = [&](uint32_t c, const BBox& box, const std::vector<Vec3>& pts, uint64_t first_id,
+                         size_t& in) {
     std::vector<Plane> outward;
     for (uint32_t f : cx.cell(c).facets) {
       Plane pl = cx.planes()[cx.facet(f).plane];
       if (dot(pl.n, cx.outward_normal(f, c)) < 0) pl = Plane{-pl.n, -pl.d};
       outward.push_back(pl);
     }
-    if (p.surface_enters(outward, cx.cell_bbox(c))) return false;
+    if (p.surface_enters(outward, box)) return false;
     voted.clear();
     ids.clear();
     in_batch.clear();
@@ -225,7 +226,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
         cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
     size_t in = 0;
     const bool grazed =
-        !free_cell && p.surface_enters && p.vote_batch > 0 && grazed_vote(c, pts, first_id, in);
+        !free_cell && p.surface_enters && p.vote_batch > 0 && grazed_vote(c, box, pts, first_id, in);
     if (!grazed) {
       ids.resize(pts.size());
       for (size_t i = 0; i < pts.size(); ++i) ids[i] = first_id + i;

@@ -417,10 +417,9 @@ bool InsideOracle::enclosed(const Vec3& p, uint64_t point_id) const {
 
 void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id,
                             std::vector<uint8_t>& out) const {
-  out.assign(pts.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i], first_id + i) ? 1 : 0;
-  });
+  std::vector<uint64_t> ids(pts.size());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = first_id + i;
+  classify(pts, ids, out);
 }
 
 void InsideOracle::classify(const std::vector<Vec3>& pts, const std::vector<uint64_t>& ids,
