@@ -355,6 +355,10 @@ int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir, bool* clean) c
   return any_odd ? 1 : 2;
 }
 
+uint64_t InsideOracle::splitmix_base(uint64_t point_id) const {
+  return splitmix64(seed_ ^ splitmix64(point_id));
+}
+
 Vec3 InsideOracle::ray_direction(uint64_t base, int k) const {
   const uint64_t r1 = splitmix64(base + 2 * static_cast<uint64_t>(k));
   const uint64_t r2 = splitmix64(base + 2 * static_cast<uint64_t>(k) + 1);
@@ -370,20 +374,14 @@ bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
   if (!box_.valid() || p.x < box_.lo.x || p.y < box_.lo.y || p.z < box_.lo.z || p.x > box_.hi.x ||
       p.y > box_.hi.y || p.z > box_.hi.z)
     return false;
-  const uint64_t base = splitmix64(seed_ ^ splitmix64(point_id));
+  const uint64_t base = splitmix_base(point_id);
   int votes = 0;
   for (int k = 0; k < rays_; ++k) {
-    if (k == 0 && valid_solid_ && rays_ >= 3) {
-      // A valid solid: two clean rays that agree decide the point (docs/algorithm.md §6.6).
-      bool clean0 = false, clean1 = false;
-      const int n0 = count_crossings(p, ray_direction(base, 0), &clean0) & 1;
-      const int n1 = count_crossings(p, ray_direction(base, 1), &clean1) & 1;
-      if (clean0 && clean1 && n0 == n1) return n0 != 0;
-      votes += n0 + n1;
-      ++k;
-    } else {
-      votes += count_crossings(p, ray_direction(base, k)) & 1;
-    }
+    bool clean = false;
+    const int n = count_crossings(p, ray_direction(base, k), valid_solid_ && k == 0 ? &clean : nullptr) & 1;
+    // A valid solid: a clean first ray decides the point (docs/algorithm.md §6.6).
+    if (clean) return n != 0;
+    votes += n;
     // Stop once the majority is decided: the same answer as all rays, since ray k's direction
     // depends only on (seed, point, k). Most points are unambiguous: 3 rays instead of 5.
     if (2 * votes > rays_) return true;

@@ -52,17 +52,20 @@ class InsideOracle {
   // only perturb the carving).
   void set_enclosure(bool on) { enclosure_ = on && nonmanifold_edges_ > 0; }
   // The soup is a valid solid (closed, 2-manifold, outward, not self-intersecting, checked with
-  // exact predicates): a ray is wrong only where it passes within the merge distance of an edge
-  // or of a second surface, so two clean rays that agree decide a point, and the vote runs only
-  // for the others (docs/algorithm.md §6.6).
+  // exact predicates): a ray's parity is the point's containment unless the ray passes within
+  // the merge distance of an edge or of a second surface, which a clean ray does not, so a clean
+  // first ray decides a point and the vote runs only for the others (docs/algorithm.md §6.6).
   void set_valid_solid(bool on) { valid_solid_ = on; }
   size_t nonmanifold_edges() const { return nonmanifold_edges_; }
+  // The direction of the point's first ray (exposed for tests and diagnostics).
+  Vec3 first_ray(uint64_t point_id) const { return ray_direction(splitmix_base(point_id), 0); }
   // True when no ray of the fan from p escapes (exposed for tests and diagnostics).
   bool enclosed(const Vec3& p, uint64_t point_id) const;
 
  private:
   void assign_groups(const TriangleSoup& soup);
-  Vec3 ray_direction(uint64_t base, int k) const;  // ray k of the point with seed `base`
+  Vec3 ray_direction(uint64_t base, int k) const;   // ray k of the point with seed `base`
+  uint64_t splitmix_base(uint64_t point_id) const;  // that seed for a point
   struct Impl;
   std::unique_ptr<Impl> impl_;
   BBox box_;

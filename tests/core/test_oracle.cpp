@@ -50,7 +50,7 @@ TEST(Oracle, ClosedLPrism) { EXPECT_EQ(misclassified(test::l_prism()), 0); }
 
 TEST(Oracle, OpenBottomLPrism) { EXPECT_EQ(misclassified(test::l_prism(false)), 0); }
 
-// The fast path for valid solids (docs/algorithm.md §6.6): two clean rays that agree decide a
+// The fast path for valid solids (docs/algorithm.md §6.6): a clean first ray decides a
 // point. On a valid solid it labels like the vote, also for points whose rays run through the
 // L's edges and vertices (those fall back to the vote).
 TEST(Oracle, ValidSolidFastPathLabelsLikeTheVote) {
@@ -72,6 +72,40 @@ TEST(Oracle, ValidSolidFastPathLabelsLikeTheVote) {
   EXPECT_TRUE(clean);
   fast.count_crossings({2, 2, 3}, {2, 2, 3}, &clean);
   EXPECT_FALSE(clean);
+}
+
+// Beside a wedge thinner than the merge distance, rays that cross the wedge see its two faces as
+// one crossing, so the vote calls outside points inside. A clean first ray does not cross such a
+// place: with the fast path it decides the point, and its label is the point's containment
+// (docs/algorithm.md §6.6). The wedge lies on the -x side of the probes: the first ray's azimuth
+// is in the first of five sectors (0°..72°), so it leaves towards +x, while most of the others
+// cross the wedge.
+TEST(Oracle, ValidSolidCleanFirstRayGivesContainmentBesideAThinWedge) {
+  PolygonMesh m;
+  test::add_prism(m, {{0, 0}, {0.05, 10}, {0, 10}}, 0, 10);  // 0 < x < 0.005 y: thinner than 0.1
+  const TriangleSoup soup = triangulate(m);
+  InsideOracle vote(soup, 5, 1), fast(soup, 5, 1);
+  vote.set_merge_distance(0.1);
+  fast.set_merge_distance(0.1);
+  fast.set_valid_solid(true);
+  int clean_first = 0, vote_wrong = 0;
+  uint64_t id = 0;
+  for (double y : {2.0, 4.0, 6.0, 8.0})
+    for (double dx : {0.002, 0.005, 0.01})
+      for (double z : {2.0, 5.0, 8.0}) {
+        const Vec3 p{0.005 * y + dx, y, z};  // outside, inside the wedge's bounding box
+        bool clean = false;
+        const int n = fast.count_crossings(p, fast.first_ray(id), &clean);
+        vote_wrong += vote.inside(p, id);
+        if (clean) {
+          ++clean_first;
+          EXPECT_EQ(n & 1, 0) << "y " << y << " dx " << dx << " z " << z;
+          EXPECT_FALSE(fast.inside(p, id)) << "y " << y << " dx " << dx << " z " << z;
+        }
+        ++id;
+      }
+  EXPECT_GT(clean_first, 30);
+  EXPECT_GT(vote_wrong, 5);  // the merged crossings are really there
 }
 
 TEST(Oracle, FlippedAndDuplicatedFaces) {
