@@ -1,5 +1,6 @@
 #include "core/oracle.hpp"
 #include "core/embree_device.hpp"
+#include "core/fast_sincos.hpp"
 #include "core/union_find.hpp"
 
 #include <embree3/rtcore.h>
@@ -367,7 +368,9 @@ Vec3 InsideOracle::ray_direction(uint64_t base, int k) const {
   const double phi = 2 * M_PI * (k + unit_double(r1)) / rays_;
   const double z = 0.5 + 0.5 * unit_double(r2);
   const double r = std::sqrt(std::max(0.0, 1 - z * z));
-  return Vec3{r * std::cos(phi), r * std::sin(phi), z};
+  double sin_phi = 0, cos_phi = 0;
+  fast_sincos(phi, sin_phi, cos_phi);
+  return Vec3{r * cos_phi, r * sin_phi, z};
 }
 
 bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {

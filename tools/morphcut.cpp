@@ -233,6 +233,9 @@ int main(int argc, char** argv) {
                             {"cell_size", pre.cell_size},
                             {"dist_thresh", pre.dist},
                             {"up_axis", pre.up_axis == 1 ? "y" : "z"},
+                            {"oracle_points", pre.oracle_points},
+                            {"fast_path", pre.fast_path},
+                            {"fast_path_reason", pre.fast_path_reason},
                             {"problems", problems}};
     double volume = 0;
     for (const auto& c : pre.components) volume += c.volume;
