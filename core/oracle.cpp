@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <unordered_map>
 #include <cmath>
@@ -22,10 +23,11 @@ namespace {
 
 using Hits = std::vector<std::pair<float, unsigned>>;  // (t, primitive id)
 
-// Context extended with the hit list (the usual Embree idiom: the filter casts back).
+// Context extended with the hit lists of the rays traced together, indexed by the rays' ids (the
+// usual Embree idiom: the filter casts back).
 struct CollectContext {
   RTCIntersectContext base;
-  Hits* hits;
+  Hits* hits[4];
 };
 
 // Records every hit and rejects it, so traversal continues to the end of the ray.
@@ -33,7 +35,8 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<CollectContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
-    ctx->hits->emplace_back(RTCRayN_tfar(args->ray, args->N, i), RTCHitN_primID(args->hit, args->N, i));
+    ctx->hits[RTCRayN_id(args->ray, args->N, i)]->emplace_back(RTCRayN_tfar(args->ray, args->N, i),
+                                                               RTCHitN_primID(args->hit, args->N, i));
     args->valid[i] = 0;
   }
 }
@@ -52,6 +55,7 @@ RTCRay make_ray(const Vec3& o, const Vec3& dir) {
   ray.mask = 0xFFFFFFFFu;
   ray.flags = 0;
   ray.time = 0;
+  ray.id = 0;
   return ray;
 }
 
@@ -119,24 +123,58 @@ RTCScene triangle_scene(const TriangleSoup& soup, const std::vector<uint32_t>* u
 // The triangles a ray from `from` (scene coordinates) along `dir` crosses, each once (spatial
 // splits can report one primitive twice), as (t, primitive) ordered by primitive. The buffer is
 // the thread's own and is reused by its next call.
-Hits& ray_hits(RTCScene scene, const Vec3& from, const Vec3& dir) {
-  thread_local Hits hits;
-  hits.clear();
-  CollectContext ctx;
-  rtcInitIntersectContext(&ctx.base);
-  ctx.hits = &hits;
-  RTCRayHit rh;
-  rh.ray = make_ray(from, dir);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene, &ctx.base, &rh);
+void unique_by_primitive(Hits& hits) {
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     return a.second != b.second ? a.second < b.second : a.first < b.first;
   });
   hits.erase(std::unique(hits.begin(), hits.end(),
                          [](const auto& a, const auto& b) { return a.second == b.second; }),
              hits.end());
+}
+
+Hits& ray_hits(RTCScene scene, const Vec3& from, const Vec3& dir) {
+  thread_local Hits hits;
+  hits.clear();
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.hits[0] = &hits;
+  RTCRayHit rh;
+  rh.ray = make_ray(from, dir);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene, &ctx.base, &rh);
+  unique_by_primitive(hits);
   return hits;
+}
+
+// The same for n <= 4 rays from one point, traced together as one Embree packet.
+void ray_hits4(RTCScene scene, const Vec3& from, const Vec3* dirs, int n, std::array<Hits, 4>& hits) {
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  alignas(16) int valid[4];
+  alignas(16) RTCRayHit4 rh;
+  for (int i = 0; i < 4; ++i) {
+    hits[i].clear();
+    ctx.hits[i] = &hits[i];
+    valid[i] = i < n ? -1 : 0;
+    const RTCRay r = make_ray(from, dirs[i < n ? i : 0]);
+    rh.ray.org_x[i] = r.org_x;
+    rh.ray.org_y[i] = r.org_y;
+    rh.ray.org_z[i] = r.org_z;
+    rh.ray.dir_x[i] = r.dir_x;
+    rh.ray.dir_y[i] = r.dir_y;
+    rh.ray.dir_z[i] = r.dir_z;
+    rh.ray.tnear[i] = r.tnear;
+    rh.ray.tfar[i] = r.tfar;
+    rh.ray.mask[i] = r.mask;
+    rh.ray.flags[i] = 0;
+    rh.ray.time[i] = 0;
+    rh.ray.id[i] = static_cast<unsigned>(i);
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect4(valid, scene, &ctx.base, &rh);
+  for (int i = 0; i < n; ++i) unique_by_primitive(hits[i]);
 }
 
 }  // namespace
@@ -316,8 +354,13 @@ int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir) const {
 int InsideOracle::count_crossings(const Vec3& p, const Vec3& dir, bool* clean) const {
   if (clean) *clean = impl_->groups == 1;
   if (!impl_->scene) return 0;
+  return crossings(ray_hits(impl_->scene, p - impl_->origin, dir), dir, clean);
+}
+
+int InsideOracle::crossings(std::vector<std::pair<float, unsigned>>& hits, const Vec3& dir,
+                            bool* clean) const {
+  if (clean) *clean = impl_->groups == 1;
   // Hits at nearly equal t are merged below (shared edges and vertices, coincident triangles).
-  Hits& hits = ray_hits(impl_->scene, p - impl_->origin, dir);
   if (hits.empty()) return 0;
   const double scale = 1.0 / norm(dir);  // t is in units of |dir|
   if (impl_->groups == 1) {
@@ -379,7 +422,25 @@ bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
     return false;
   const uint64_t base = splitmix_base(point_id);
   int votes = 0;
-  for (int k = 0; k < rays_; ++k) {
+  int k0 = 0;
+  if (!valid_solid_ && impl_->scene) {
+    // The first (rays + 1) / 2 rays are always cast (no majority before them), so they go to
+    // Embree as one packet: they share their origin and the top of the BVH (docs/algorithm.md §6.1).
+    const int first = std::min(4, (rays_ + 1) / 2);
+    if (first >= 2) {
+      Vec3 dirs[4];
+      for (int k = 0; k < first; ++k) dirs[k] = ray_direction(base, k);
+      thread_local std::array<Hits, 4> hits;
+      ray_hits4(impl_->scene, p - impl_->origin, dirs, first, hits);
+      for (int k = 0; k < first; ++k) {
+        votes += crossings(hits[k], dirs[k], nullptr) & 1;
+        if (2 * votes > rays_) return true;
+        if (2 * (votes + rays_ - (k + 1)) <= rays_) return enclosure_ && enclosed(p, point_id);
+      }
+      k0 = first;
+    }
+  }
+  for (int k = k0; k < rays_; ++k) {
     bool clean = false;
     const int n = count_crossings(p, ray_direction(base, k), valid_solid_ && k == 0 ? &clean : nullptr) & 1;
     // A valid solid: a clean first ray decides the point (docs/algorithm.md §6.6).

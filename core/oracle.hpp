@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/plane.hpp"
@@ -38,6 +39,8 @@ class InsideOracle {
   // The same; `clean` tells whether no two crossings came within twice the merge distance of
   // each other (no edge, vertex or second surface near the ray) and the soup is one parity group.
   int count_crossings(const Vec3& p, const Vec3& dir, bool* clean) const;
+  // The count of a ray's hits (t along dir, primitive), as count_crossings.
+  int crossings(std::vector<std::pair<float, unsigned>>& hits, const Vec3& dir, bool* clean) const;
   const BBox& bbox() const { return box_; }
   // Hits closer than `t` along a ray count as one crossing. Preprocessing sets it to δ: surfaces
   // within the model tolerance are one surface (duplicate or doubled walls), as in plane merging.
@@ -57,8 +60,8 @@ class InsideOracle {
   // first ray decides a point and the vote runs only for the others (docs/algorithm.md §6.6).
   void set_valid_solid(bool on) { valid_solid_ = on; }
   size_t nonmanifold_edges() const { return nonmanifold_edges_; }
-  // The direction of the point's first ray (exposed for tests and diagnostics).
-  Vec3 first_ray(uint64_t point_id) const { return ray_direction(splitmix_base(point_id), 0); }
+  // The direction of the point's ray k (exposed for tests and diagnostics).
+  Vec3 ray(uint64_t point_id, int k) const { return ray_direction(splitmix_base(point_id), k); }
   // True when no ray of the fan from p escapes (exposed for tests and diagnostics).
   bool enclosed(const Vec3& p, uint64_t point_id) const;
 
@@ -98,6 +101,8 @@ class VerticalOracle {
 
   bool valid() const { return box_.valid(); }  // some cover triangle
   // Box of the cover triangles, from the ground level up; everything outside it is outside.
+  // The count of a ray's hits (t along dir, primitive), as count_crossings.
+  int crossings(std::vector<std::pair<float, unsigned>>& hits, const Vec3& dir, bool* clean) const;
   const BBox& bbox() const { return box_; }
   bool inside(const Vec3& p) const;                                              // thread-safe
   void classify(const std::vector<Vec3>& pts, std::vector<uint8_t>& out) const;  // parallel (TBB)
