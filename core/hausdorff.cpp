@@ -57,7 +57,8 @@ struct Samples {
 // point lies in a lattice cell with edges <= step. A lattice on a sliver would cost
 // (length/step)^2 points for almost no area, so slivers are first cut by longest-edge
 // bisection until the pieces are fat or short; their cost is then linear in their length.
-bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples& s) {
+// With `s` null only counts the points into `count` (the same tests, so the same outcome).
+bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples* s, size_t& count) {
   std::vector<std::array<K::Point_3, 3>> stack{{t[0], t[1], t[2]}};
   while (!stack.empty()) {
     const auto tri = stack.back();
@@ -74,7 +75,7 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
     const double len = std::sqrt(len2);
     const double area = std::sqrt(CGAL::to_double(K::Triangle_3(tri[0], tri[1], tri[2]).squared_area()));
     const double min_altitude = 2 * area / len;
-    if (s.points.size() + stack.size() > budget) return false;
+    if (count + stack.size() > budget) return false;
     if (len > step && min_altitude < len / 4) {  // a sliver: bisect its longest edge
       const K::Point_3& a = tri[longest];
       const K::Point_3& b = tri[(longest + 1) % 3];
@@ -89,12 +90,14 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
     const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
     const K::Vector_3 e1 = (tri[1] - tri[0]) / n, e2 = (tri[2] - tri[0]) / n;
     const double w = area / ((n + 1.0) * (n + 2.0) / 2);
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; i + j <= n; ++j) {
-        s.points.push_back(tri[0] + i * e1 + j * e2);
-        s.weights.push_back(w);
-      }
-    if (s.points.size() > budget) return false;
+    count += static_cast<size_t>(n + 1) * static_cast<size_t>(n + 2) / 2;
+    if (s)
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j) {
+          s->points.push_back(tri[0] + i * e1 + j * e2);
+          s->weights.push_back(w);
+        }
+    if (count > budget) return false;
   }
   return true;
 }
@@ -103,17 +106,23 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
 Samples sample(const Triangles& tris, double step, size_t budget, double* used) {
   // Every triangle gets at least its 3 corners, so the budget must allow that.
   budget = std::max(budget, 4 * tris.size());
+  // The step is found by counting (cheap), and the points made once.
+  size_t total = 0;
   for (;;) {
-    Samples s;
+    total = 0;
     bool ok = true;
     for (const auto& t : tris)
-      if (!(ok = sample_triangle(t, step, budget, s))) break;
-    if (ok) {
-      *used = step;
-      return s;
-    }
+      if (!(ok = sample_triangle(t, step, budget, nullptr, total))) break;
+    if (ok) break;
     step *= 1.5;
   }
+  Samples s;
+  s.points.reserve(total);
+  s.weights.reserve(total);
+  size_t count = 0;
+  for (const auto& t : tris) sample_triangle(t, step, budget, &s, count);
+  *used = step;
+  return s;
 }
 
 struct OneSided {
@@ -157,8 +166,21 @@ class ClosestPoints {
         extent = std::max({extent, std::abs(v[k].x), std::abs(v[k].y), std::abs(v[k].z)});
       }
       tris_.push_back(v);
+      // The plane, where the normal is well defined (not a sliver): its distance bounds the
+      // triangle's from below (see `visit`).
+      const Vec3 c = cross(v[1] - v[0], v[2] - v[0]);
+      const double longest = std::max(
+          {dot(v[1] - v[0], v[1] - v[0]), dot(v[2] - v[1], v[2] - v[1]), dot(v[0] - v[2], v[0] - v[2])});
+      const double len = norm(c);
+      if (len > 1e-6 * longest) {
+        const Vec3 n = c / len;
+        planes_.push_back({n.x, n.y, n.z, -dot(n, v[0])});
+      } else {
+        planes_.push_back({0, 0, 0, 0});  // never rejects
+      }
     }
     margin_ = static_cast<float>(1e-5 * std::max(extent, 1e-9));
+    slack_ = 1e-8 * std::max(extent, 1e-9);
     scene_ = rtcNewScene(shared_embree_device());
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry geom = rtcNewGeometry(shared_embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -220,6 +242,13 @@ class ClosestPoints {
   static bool visit(RTCPointQueryFunctionArguments* args) {
     auto* q = static_cast<Query*>(args->userPtr);
     if (args->primID == q->best) return false;
+    // A triangle whose plane is farther than the best distance so far cannot be closer. The
+    // slack (10⁻⁸ of the coordinates, far above the plane's rounding) keeps every triangle whose
+    // computed distance could tie or win, so the result is the one without this test.
+    const auto& pl = q->self->planes_[args->primID];
+    if (std::abs(pl[0] * q->p.x + pl[1] * q->p.y + pl[2] * q->p.z + pl[3]) >
+        std::sqrt(q->best2) + q->self->slack_)
+      return false;
     const double d2 = q->self->squared(q->p, args->primID);
     if (!(d2 < q->best2)) return false;
     q->best2 = d2;
@@ -228,7 +257,9 @@ class ClosestPoints {
     return true;
   }
   std::vector<std::array<Vec3, 3>> tris_;
+  std::vector<std::array<double, 4>> planes_;  // unit normal and offset; zero for slivers
   float margin_ = 0;
+  double slack_ = 0;
   RTCScene scene_ = nullptr;
 };
 
