@@ -41,6 +41,9 @@ namespace mc::pipeline {
 
 using nlohmann::json;
 using SteadyClock = std::chrono::steady_clock;
+// Features read ahead of the writer, among which the largest is started first (at least the
+// in-flight window).
+constexpr size_t kLookAhead = 256;
 
 namespace {
 
@@ -50,6 +53,7 @@ double since(SteadyClock::time_point t0) {
 
 struct Work {
   size_t sequence = 0;
+  bool largest_first = false;  // started ahead of its turn because it was the largest read
   double read_seconds = 0;
   mc::io::Feature feature;
   BuildingOutcome outcome;
@@ -220,13 +224,20 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   size_t started = 0;
   std::atomic<size_t> written{0};
   const size_t window = static_cast<size_t>(res.in_flight);
+  // The source looks further ahead than the window, so a large building starts long before the
+  // writer needs it (not when it enters the window, where the window could fill up with small
+  // buildings finished behind it and leave cores idle), and at most threads - 1 buildings run out
+  // of turn, so the others keep the writer going (docs/design.md, "Largest buildings first").
+  const size_t look_ahead = std::max(window, kLookAhead);
+  const int max_largest_first = std::max(1, res.threads - 1);
+  std::atomic<int> largest_running{0};
   tbb::flow::graph g;
   tbb::flow::input_node<Msg> source(g, [&](tbb::flow_control& fc) -> Msg {
     if (stop.load() || interrupt_signal()) {
       fc.stop();
       return {};
     }
-    while (!input_done && ahead.size() < window) {
+    while (!input_done && ahead.size() < look_ahead) {
       auto w = std::make_shared<Work>();
       const auto t = SteadyClock::now();
       try {
@@ -250,11 +261,15 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     }
     auto lowest = [](const Msg& a, const Msg& b) { return a->sequence < b->sequence; };
     auto pick = std::min_element(ahead.begin(), ahead.end(), lowest);
-    if (started - written.load() + 1 < window)
+    const bool largest = started - written.load() + 1 < window && largest_running.load() < max_largest_first;
+    if (largest) {
       pick = std::min_element(ahead.begin(), ahead.end(), [](const Msg& a, const Msg& b) {
         const size_t na = a->feature.vertices.size(), nb = b->feature.vertices.size();
         return na != nb ? na > nb : a->sequence < b->sequence;
       });
+      (*pick)->largest_first = true;
+      ++largest_running;
+    }
     Msg w = std::move(*pick);
     ahead.erase(pick);
     ++started;
@@ -262,6 +277,13 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   });
   tbb::flow::limiter_node<Msg> limiter(g, static_cast<size_t>(res.in_flight));
   tbb::flow::function_node<Msg, Msg> job(g, tbb::flow::unlimited, [&](Msg w) -> Msg {
+    struct OutOfTurn {  // however the job ends
+      std::atomic<int>& running;
+      bool counted;
+      ~OutOfTurn() {
+        if (counted) --running;
+      }
+    } out_of_turn{largest_running, w->largest_first};
     if (stop.load() || interrupt_signal()) return w;  // nothing will be written: skip the work
     if (std::string why = crash_guard.skip_reason(w->feature.id); !why.empty()) {
       w->outcome = failed_building(std::move(w->feature), why);
