@@ -44,6 +44,9 @@ using SteadyClock = std::chrono::steady_clock;
 // Features read ahead of the writer, among which the largest is started first (at least the
 // in-flight window).
 constexpr size_t kLookAhead = 256;
+// and at most this many vertices among them beyond the window (a parsed feature takes about
+// 0.75 kB per vertex: this bounds the look-ahead's memory at about 25 MB whatever the buildings).
+constexpr size_t kLookAheadVertices = 32768;
 
 namespace {
 
@@ -231,13 +234,15 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   const size_t look_ahead = std::max(window, kLookAhead);
   const int max_largest_first = std::max(1, res.threads - 1);
   std::atomic<int> largest_running{0};
+  size_t ahead_vertices = 0;
   tbb::flow::graph g;
   tbb::flow::input_node<Msg> source(g, [&](tbb::flow_control& fc) -> Msg {
     if (stop.load() || interrupt_signal()) {
       fc.stop();
       return {};
     }
-    while (!input_done && ahead.size() < look_ahead) {
+    while (!input_done &&
+           (ahead.size() < window || (ahead.size() < look_ahead && ahead_vertices < kLookAheadVertices))) {
       auto w = std::make_shared<Work>();
       const auto t = SteadyClock::now();
       try {
@@ -253,6 +258,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       }
       w->read_seconds = since(t);
       w->sequence = next_sequence++;
+      ahead_vertices += w->feature.vertices.size();
       ahead.push_back(std::move(w));
     }
     if (ahead.empty()) {
@@ -272,6 +278,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     }
     Msg w = std::move(*pick);
     ahead.erase(pick);
+    ahead_vertices -= w->feature.vertices.size();
     ++started;
     return w;
   });
