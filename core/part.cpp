@@ -94,7 +94,25 @@ namespace {
 struct Incidence {
   uint32_t facet, cell;  // cell: global id
   uint32_t a, b;         // directed edge in the outward loop
+  uint32_t face;         // the boundary facet's index in the part (0, 1, ...)
 };
+
+// A closed boundary (every edge used by exactly two faces) with V − E + F = 2 per connected
+// component has no pinched vertex: unpinching a vertex of k fans adds k − 1 vertices and leaves a
+// closed 2-manifold, whose Euler characteristic is at most 2 per component (docs/algorithm.md
+// §9.2). So the fan test runs only for parts that fail this count (rings, pinches).
+bool euler_says_no_pinch(const std::vector<std::pair<uint64_t, std::span<const Incidence>>>& by_edge,
+                         size_t vertices, size_t faces) {
+  UnionFind comp(faces);
+  for (const auto& [key, inc] : by_edge) {
+    if (inc.size() != 2) return false;
+    comp.link(inc[0].face, inc[1].face);
+  }
+  size_t components = 0;
+  for (uint32_t f = 0; f < faces; ++f) components += comp.is_root(f);
+  const long chi = static_cast<long>(vertices) - static_cast<long>(by_edge.size()) + static_cast<long>(faces);
+  return chi == 2 * static_cast<long>(components);
+}
 
 // One mesh edge between two boundary faces on different planes, with its dihedral angle.
 struct DihedralEdge {
@@ -316,6 +334,7 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   // Volume, boundary incidences and hull points.
   std::vector<std::pair<uint64_t, Incidence>> edge_uses;  // (edge key, use) in boundary order
   std::vector<uint64_t> vertex_planes;  // (vertex << 32 | plane) of every boundary facet corner
+  uint32_t faces = 0;
   for (uint32_t i = 0; i < s.cells.size(); ++i) {
     if (!test_bit(info.bits, i)) continue;
     ++info.cell_count;
@@ -326,9 +345,10 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
       for (size_t k = 0; k < loop.size(); ++k) {
         const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
         edge_uses.push_back(
-            {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), {side.facet, s.cells[i], a, b}});
+            {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), {side.facet, s.cells[i], a, b, faces}});
         vertex_planes.push_back((uint64_t(a) << 32) | cx.facet(side.facet).plane);
       }
+      ++faces;
     }
   }
   // Hull points: the boundary vertices where three or more planes meet. A vertex whose boundary
@@ -338,10 +358,12 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   std::sort(vertex_planes.begin(), vertex_planes.end());
   vertex_planes.erase(std::unique(vertex_planes.begin(), vertex_planes.end()), vertex_planes.end());
   std::vector<Vec3> pts;
+  size_t vertices = 0;
   for (size_t i = 0; i < vertex_planes.size();) {
     size_t j = i;
     while (j < vertex_planes.size() && (vertex_planes[j] >> 32) == (vertex_planes[i] >> 32)) ++j;
     if (j - i >= 3) pts.push_back(cx.point(static_cast<uint32_t>(vertex_planes[i] >> 32)));
+    ++vertices;
     i = j;
   }
   const std::shared_ptr<const Hull> hull_ptr =
@@ -384,8 +406,9 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
     edges.push_back(d);
   }
   // A vertex where two fans of faces meet is as invalid in a solid as a pinch edge.
-  info.pinch_edges +=
-      static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
+  if (!euler_says_no_pinch(by_edge, vertices, faces))
+    info.pinch_edges +=
+        static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
   std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
 

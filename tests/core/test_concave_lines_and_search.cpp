@@ -231,6 +231,59 @@ TEST(ConcaveLines, BoxHasNoConcaveLineAndNoCandidate) {
   EXPECT_EQ(info.pinch_edges, 0);
 }
 
+// Pinched vertices and edges of a part (docs/algorithm.md §9.2) on a 3 × 3 × 3 grid of unit
+// cells: the fan test runs only when the Euler count V − E + F = 2 per component fails, so a
+// ring (genus 1) and two cubes meeting at a corner both go through it, and a box does not.
+TEST(ConcaveLines, PinchedVerticesCountedWhereTheEulerCountFails) {
+  PlaneRegistry reg;
+  BBox box;
+  box.add({0, 0, 0});
+  box.add({3, 3, 3});
+  CellComplex cx(reg, box);
+  for (int axis = 0; axis < 3; ++axis)
+    for (double at : {1.0, 2.0}) {
+      Vec3 n{0, 0, 0};
+      (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = 1;
+      const uint32_t p = reg.add({n, -at});
+      for (uint32_t c : cx.live_cells()) cx.split(c, p);
+    }
+  const std::vector<uint32_t> all = cx.live_cells();
+  ASSERT_EQ(all.size(), 27u);
+  auto cell_at = [&](int x, int y, int z) {
+    for (uint32_t c : all) {
+      const Vec3 m = cx.cell_centroid(c);
+      if (std::abs(m.x - x - 0.5) < 0.1 && std::abs(m.y - y - 0.5) < 0.1 && std::abs(m.z - z - 0.5) < 0.1)
+        return c;
+    }
+    ADD_FAILURE() << "no cell at " << x << y << z;
+    return CellComplex::kNone;
+  };
+  const DecomposeParams dp;
+  AnalysisContext ctx;
+  ctx.dec = &dp;
+  ctx.dist = 0.01;
+  ctx.a_diag = 3 * std::sqrt(18.0);
+  ctx.level = 0.1;
+  ctx.box = box;
+  const PlaneResolver none = [](const Plane&, const std::vector<uint32_t>&) {
+    return std::optional<uint32_t>();
+  };
+  auto pinches = [&](std::vector<uint32_t> cells) {
+    std::sort(cells.begin(), cells.end());
+    const CellSpace space = make_space(cx, cells);
+    return analyze_part(space, space.all(), ctx, none).pinch_edges;
+  };
+  EXPECT_EQ(pinches(all), 0);                                   // a box: V − E + F = 2
+  EXPECT_EQ(pinches({cell_at(0, 0, 0), cell_at(2, 2, 2)}), 0);  // apart: 2 per component
+  EXPECT_EQ(pinches({cell_at(0, 0, 0), cell_at(1, 1, 1)}), 1);  // a pinched vertex
+  EXPECT_EQ(pinches({cell_at(0, 0, 0), cell_at(1, 1, 0)}), 3);  // a pinch edge and its two ends
+  std::vector<uint32_t> ring;                                   // genus 1 (V − E + F = 0), not pinched
+  for (int x = 0; x < 3; ++x)
+    for (int y = 0; y < 3; ++y)
+      if (x != 1 || y != 1) ring.push_back(cell_at(x, y, 0));
+  EXPECT_EQ(pinches(ring), 0);
+}
+
 TEST(ConcaveLines, LShapeHasOneLineAtTheInnerCornerProposingBothWallsAndTheBisector) {
   Preprocessed pre = prep(test::l_building());
   const DecomposeParams dp;
