@@ -169,10 +169,10 @@ class ClosestPoints {
       // The plane, where the normal is well defined (not a sliver): its distance bounds the
       // triangle's from below (see `visit`).
       const Vec3 c = cross(v[1] - v[0], v[2] - v[0]);
-      const double longest = std::max(
+      const double longest2 = std::max(
           {dot(v[1] - v[0], v[1] - v[0]), dot(v[2] - v[1], v[2] - v[1]), dot(v[0] - v[2], v[0] - v[2])});
       const double len = norm(c);
-      if (len > 1e-6 * longest) {
+      if (len > 1e-6 * longest2) {  // |normal error| <= ulp · longest² / |c| <= 1e-10
         const Vec3 n = c / len;
         planes_.push_back({n.x, n.y, n.z, -dot(n, v[0])});
       } else {

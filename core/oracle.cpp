@@ -120,9 +120,7 @@ RTCScene triangle_scene(const TriangleSoup& soup, const std::vector<uint32_t>* u
   return scene;
 }
 
-// The triangles a ray from `from` (scene coordinates) along `dir` crosses, each once (spatial
-// splits can report one primitive twice), as (t, primitive) ordered by primitive. The buffer is
-// the thread's own and is reused by its next call.
+// Each primitive once (spatial splits can report one primitive twice), ordered by primitive.
 void unique_by_primitive(Hits& hits) {
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     return a.second != b.second ? a.second < b.second : a.first < b.first;
@@ -132,6 +130,8 @@ void unique_by_primitive(Hits& hits) {
              hits.end());
 }
 
+// The triangles a ray from `from` (scene coordinates) along `dir` crosses, each once, as
+// (t, primitive) ordered by primitive. The buffer is the thread's own and is reused by its next call.
 Hits& ray_hits(RTCScene scene, const Vec3& from, const Vec3& dir) {
   thread_local Hits hits;
   hits.clear();

@@ -39,8 +39,6 @@ class InsideOracle {
   // The same; `clean` tells whether no two crossings came within twice the merge distance of
   // each other (no edge, vertex or second surface near the ray) and the soup is one parity group.
   int count_crossings(const Vec3& p, const Vec3& dir, bool* clean) const;
-  // The count of a ray's hits (t along dir, primitive), as count_crossings.
-  int crossings(std::vector<std::pair<float, unsigned>>& hits, const Vec3& dir, bool* clean) const;
   const BBox& bbox() const { return box_; }
   // Hits closer than `t` along a ray count as one crossing. Preprocessing sets it to δ: surfaces
   // within the model tolerance are one surface (duplicate or doubled walls), as in plane merging.
@@ -67,7 +65,9 @@ class InsideOracle {
 
  private:
   void assign_groups(const TriangleSoup& soup);
-  Vec3 ray_direction(uint64_t base, int k) const;   // ray k of the point with seed `base`
+  Vec3 ray_direction(uint64_t base, int k) const;  // ray k of the point with seed `base`
+  // count_crossings from a ray's hits (t along dir, primitive); sorts them.
+  int crossings(std::vector<std::pair<float, unsigned>>& hits, const Vec3& dir, bool* clean) const;
   uint64_t splitmix_base(uint64_t point_id) const;  // that seed for a point
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -101,8 +101,6 @@ class VerticalOracle {
 
   bool valid() const { return box_.valid(); }  // some cover triangle
   // Box of the cover triangles, from the ground level up; everything outside it is outside.
-  // The count of a ray's hits (t along dir, primitive), as count_crossings.
-  int crossings(std::vector<std::pair<float, unsigned>>& hits, const Vec3& dir, bool* clean) const;
   const BBox& bbox() const { return box_; }
   bool inside(const Vec3& p) const;                                              // thread-safe
   void classify(const std::vector<Vec3>& pts, std::vector<uint8_t>& out) const;  // parallel (TBB)
