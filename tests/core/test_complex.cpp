@@ -1,6 +1,8 @@
 #include "core/complex.hpp"
 #include "core/carve.hpp"
 
+#include "cell_grid.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -58,13 +60,7 @@ double total_volume(const CellComplex& cx) {
 TEST(Carve, EnclosedOutsideCellsAreFilled) {
   PlaneRegistry reg;
   CellComplex cx(reg, unit_box(3));
-  for (int axis = 0; axis < 3; ++axis)
-    for (double at : {1.0, 2.0}) {
-      Vec3 n{0, 0, 0};
-      (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = 1;
-      const uint32_t p = reg.add({n, -at});
-      for (uint32_t c : cx.live_cells()) cx.split(c, p);
-    }
+  test::split_into_unit_cells(cx, reg, 3);
   ASSERT_EQ(cx.live_cells().size(), 27u);
   uint32_t centre = CellComplex::kNone, corner = CellComplex::kNone;
   std::vector<uint32_t> inside;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "buildings.hpp"
+#include "cell_grid.hpp"
 #include "core/decompose.hpp"
 #include "core/part.hpp"
 #include "core/preprocess.hpp"
@@ -240,13 +241,7 @@ TEST(ConcaveLines, PinchedVerticesCountedWhereTheEulerCountFails) {
   box.add({0, 0, 0});
   box.add({3, 3, 3});
   CellComplex cx(reg, box);
-  for (int axis = 0; axis < 3; ++axis)
-    for (double at : {1.0, 2.0}) {
-      Vec3 n{0, 0, 0};
-      (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = 1;
-      const uint32_t p = reg.add({n, -at});
-      for (uint32_t c : cx.live_cells()) cx.split(c, p);
-    }
+  test::split_into_unit_cells(cx, reg, 3);
   const std::vector<uint32_t> all = cx.live_cells();
   ASSERT_EQ(all.size(), 27u);
   auto cell_at = [&](int x, int y, int z) {
