@@ -308,10 +308,21 @@ void InsideOracle::assign_groups(const TriangleSoup& soup) {
       if (!e.empty()) uf.link(t, e.front());
       e.push_back(t);
     }
+  auto normal = [&](uint32_t t) {
+    const auto& v = soup.vertices;
+    const auto& tri = soup.triangles[t];
+    const Vec3 c = cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]);
+    const double len = norm(c);
+    return len > 0 ? c / len : Vec3{};
+  };
+  const double wedge_cos = std::cos(kThinWedgeDegrees * M_PI / 180);
   std::vector<uint8_t> open(n, 0);
   for (const auto& [key, ts] : edges) {
     if (ts.size() % 2) open[find(ts.front())] = 1;
     if (ts.size() > 2) ++nonmanifold_edges_;
+    // Two faces meeting at less than the angle, on the solid's side or the air's: their normals
+    // are nearly opposite.
+    if (ts.size() == 2 && dot(normal(ts[0]), normal(ts[1])) < -wedge_cos) thin_wedges_ = true;
   }
   std::map<uint32_t, std::vector<uint32_t>> closed_components;  // root -> triangles, ordered
   for (uint32_t t = 0; t < n; ++t)
@@ -443,9 +454,17 @@ bool InsideOracle::inside(const Vec3& p, uint64_t point_id) const {
   for (int k = k0; k < rays_; ++k) {
     bool clean = false;
     const int n = count_crossings(p, ray_direction(base, k), valid_solid_ && k == 0 ? &clean : nullptr) & 1;
-    // A valid solid: a clean first ray decides the point (docs/algorithm.md §6.6).
-    if (clean) return n != 0;
+    // A valid solid: a clean first ray decides the point; beside thin wedges a second clean ray
+    // has to agree (docs/algorithm.md §6.6).
+    if (clean && (!thin_wedges_ || rays_ < 3)) return n != 0;
     votes += n;
+    if (clean) {
+      bool clean1 = false;
+      const int n1 = count_crossings(p, ray_direction(base, 1), &clean1) & 1;
+      if (clean1 && n1 == n) return n != 0;
+      votes += n1;
+      k = 1;
+    }
     // Stop once the majority is decided: the same answer as all rays, since ray k's direction
     // depends only on (seed, point, k). Most points are unambiguous: 3 rays instead of 5.
     if (2 * votes > rays_) return true;

@@ -55,8 +55,13 @@ class InsideOracle {
   // The soup is a valid solid (closed, 2-manifold, outward, not self-intersecting, checked with
   // exact predicates): a ray's parity is the point's containment unless the ray passes within
   // the merge distance of an edge or of a second surface, which a clean ray does not, so a clean
-  // first ray decides a point and the vote runs only for the others (docs/algorithm.md §6.6).
+  // first ray decides a point and the vote runs only for the others. A soup with thin wedges
+  // (`thin_wedges()`), where the vote's merged crossings and one exact ray disagree most, needs
+  // two clean rays that agree (docs/algorithm.md §6.6).
   void set_valid_solid(bool on) { valid_solid_ = on; }
+  // Two triangles along an edge meet at less than kThinWedgeDegrees on one side.
+  bool thin_wedges() const { return thin_wedges_; }
+  static constexpr double kThinWedgeDegrees = 45;
   size_t nonmanifold_edges() const { return nonmanifold_edges_; }
   // The direction of the point's ray k (exposed for tests and diagnostics).
   Vec3 ray(uint64_t point_id, int k) const { return ray_direction(splitmix_base(point_id), k); }
@@ -76,6 +81,7 @@ class InsideOracle {
   uint64_t seed_;
   bool enclosure_ = false;
   bool valid_solid_ = false;
+  bool thin_wedges_ = false;
   size_t nonmanifold_edges_ = 0;
 };
 
