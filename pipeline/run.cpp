@@ -20,6 +20,7 @@
 #include <tbb/flow_graph.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include <tbb/task_arena.h>
 
 #include "config/config.hpp"
 #include "io/cityjson.hpp"
@@ -307,8 +308,20 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       w->outcome = failed_building(std::move(w->feature), "unknown exception");
       return w;
     }
-    w->outcome = cache ? cache->run(std::move(w->feature), header, params, rc)
-                       : run_building(std::move(w->feature), header, params, rc);
+    auto building = [&] {
+      return cache ? cache->run(std::move(w->feature), header, params, rc)
+                   : run_building(std::move(w->feature), header, params, rc);
+    };
+    // A building started out of turn (the largest read) runs in an arena of high priority: a thread
+    // that finishes a small building helps with its parallel steps before it takes the next one,
+    // so the largest building takes about its time alone (docs/design.md, "Largest buildings
+    // first").
+    if (w->largest_first && res.threads > 1) {
+      tbb::task_arena heavy(res.threads, 1, tbb::task_arena::priority::high);
+      w->outcome = heavy.execute(building);
+    } else {
+      w->outcome = building();
+    }
     return w;
   });
   tbb::flow::sequencer_node<Msg> order(g, [](const Msg& w) { return w->sequence; });
