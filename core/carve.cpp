@@ -2,6 +2,8 @@
 
 #include "core/surface.hpp"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -158,7 +160,6 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   const double box_volume = cx.cell_volume(cx.root_cell());
   const BBox outer = cx.cell_bbox(cx.root_cell());
   std::vector<uint8_t> inside_label(cx.num_cells() + 1024, 0);
-  std::vector<uint8_t> flags;
 
   struct Entry {
     double score;
@@ -168,15 +169,14 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   std::priority_queue<Entry> queue;
   std::vector<std::vector<uint32_t>> todo(cx.num_cells());  // remaining plane indices per cell
 
-  std::vector<uint64_t> ids;
-  std::vector<Vec3> voted;
-  std::vector<uint8_t> in_batch;
   // A valid solid's cell that the surface only grazes (CarveParams::surface_enters): the points
   // in the band along its facets are voted as in a full vote (same ids, so the same labels), and
   // the first `vote_batch` points beyond the band decide all of those by majority. False (nothing
   // counted) when the surface does enter the cell.
+  // Reentrant: the two children of a split are voted at once (their own buffers, `points` their
+  // own count).
   auto grazed_vote = [&](uint32_t c, const BBox& box, const std::vector<Vec3>& pts, uint64_t first_id,
-                         size_t& in) {
+                         size_t& in, size_t& points) {
     std::vector<Plane> outward;
     for (uint32_t f : cx.cell(c).facets) {
       Plane pl = cx.planes()[cx.facet(f).plane];
@@ -184,9 +184,9 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       outward.push_back(pl);
     }
     if (p.surface_enters(outward, box)) return false;
-    voted.clear();
-    ids.clear();
-    in_batch.clear();
+    std::vector<Vec3> voted;
+    std::vector<uint64_t> ids;
+    std::vector<uint8_t> in_batch, flags;
     size_t batch = 0, rest = 0;
     for (size_t i = 0; i < pts.size(); ++i) {
       double depth = std::numeric_limits<double>::infinity();
@@ -208,12 +208,14 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       batch_in += in_batch[k] && flags[k];
     }
     if (2 * batch_in > batch) in += rest;
-    res.points += voted.size();
+    points += voted.size();
     return true;
   };
 
-  // Votes one cell (`box`: its vertices' box); returns its inconsistent volume.
-  auto vote = [&](uint32_t c, const BBox& box) {
+  // Votes one cell (`box`: its vertices' box); returns its inconsistent volume. Reentrant for
+  // distinct cells whose volume and centroid are measured (CellComplex caches them lazily) and
+  // whose label slot exists.
+  auto vote = [&](uint32_t c, const BBox& box, size_t& points) {
     const double v = cx.cell_volume(c);
     const long n = std::clamp<long>(static_cast<long>(std::ceil(v / unit)), p.min_points, p.max_points);
     // A cell the input surface does not touch is entirely inside or outside: a few points
@@ -226,17 +228,17 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
         cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
     size_t in = 0;
     const bool grazed =
-        !free_cell && p.surface_enters && p.vote_batch > 0 && grazed_vote(c, box, pts, first_id, in);
+        !free_cell && p.surface_enters && p.vote_batch > 0 && grazed_vote(c, box, pts, first_id, in, points);
     if (!grazed) {
-      ids.resize(pts.size());
+      std::vector<uint64_t> ids(pts.size());
+      std::vector<uint8_t> flags;
       for (size_t i = 0; i < pts.size(); ++i) ids[i] = first_id + i;
       classify(pts, ids, flags);
       for (uint8_t f : flags) in += f != 0;
-      res.points += pts.size();
+      points += pts.size();
       if (free_cell) in = 2 * in > pts.size() ? pts.size() : 0;  // unanimous by construction
     }
     const double r = pts.empty() ? 0.0 : double(in) / pts.size();
-    if (inside_label.size() <= c) inside_label.resize(c + 1024, 0);
     inside_label[c] = r > p.inside_vote;
     double score = inside_label[c] ? v * (1 - r) : v * r;
     // An inside cell reaching more than δ out of the oracle's box has air in it for sure (beyond
@@ -257,7 +259,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   std::vector<uint32_t> all(planes.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   const uint32_t root = cx.root_cell();
-  enqueue(root, vote(root, outer), all);
+  enqueue(root, vote(root, outer, res.points), all);
 
   while (!queue.empty()) {
     if (std::chrono::steady_clock::now() > deadline || cx.num_cells() > p.max_cells) {
@@ -303,13 +305,26 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       continue;
     }
     ++res.splits;
-    for (uint32_t child : {split->neg, split->pos}) {
-      std::vector<uint32_t> kept;
-      const CellVertices cv_child(cx, child);
+    // The two children are voted at once, each with its own points (the same ids and labels as
+    // one after the other), then queued in the same order (docs/algorithm.md §7.3).
+    const uint32_t child[2] = {split->neg, split->pos};
+    std::vector<uint32_t> kept[2];
+    BBox box[2];
+    for (int k = 0; k < 2; ++k) {
+      const CellVertices cv_child(cx, child[k]);
       for (uint32_t q : remaining)
-        if (crosses(cx, cv_child, planes[q], p.dist, outer) != Crossing::No) kept.push_back(q);
-      enqueue(child, vote(child, cv_child.box), std::move(kept));
+        if (crosses(cx, cv_child, planes[q], p.dist, outer) != Crossing::No) kept[k].push_back(q);
+      box[k] = cv_child.box;
+      cx.cell_volume(child[k]);  // measured (and cached) before the votes read it
     }
+    if (inside_label.size() <= std::max(child[0], child[1]))
+      inside_label.resize(std::max(child[0], child[1]) + 1024, 0);
+    double scores[2];
+    size_t points[2] = {0, 0};
+    tbb::parallel_invoke([&] { scores[0] = vote(child[0], box[0], points[0]); },
+                         [&] { scores[1] = vote(child[1], box[1], points[1]); });
+    res.points += points[0] + points[1];
+    for (int k = 0; k < 2; ++k) enqueue(child[k], scores[k], std::move(kept[k]));
   }
   for (uint32_t c : cx.live_cells()) {
     ++res.cells;
