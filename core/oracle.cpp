@@ -12,6 +12,7 @@
 #include <map>
 #include <unordered_map>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -120,9 +121,27 @@ RTCScene triangle_scene(const TriangleSoup& soup, const std::vector<uint32_t>* u
   return scene;
 }
 
+// std::sort's order for a ray's few hits, without its set-up cost: insertion sort up to 16.
+// Hits that compare equal are either the same (t, primitive) or, when sorted by (group, t),
+// interchangeable for the crossing count, so the result is the same.
+template <class Less>
+void sort_hits(Hits& hits, Less less) {
+  if (hits.size() > 16) {
+    std::sort(hits.begin(), hits.end(), less);
+    return;
+  }
+  for (size_t i = 1; i < hits.size(); ++i) {
+    const auto h = hits[i];
+    size_t j = i;
+    for (; j > 0 && less(h, hits[j - 1]); --j) hits[j] = hits[j - 1];
+    hits[j] = h;
+  }
+}
+
 // Each primitive once (spatial splits can report one primitive twice), ordered by primitive.
 void unique_by_primitive(Hits& hits) {
-  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
+  if (hits.size() < 2) return;
+  sort_hits(hits, [](const auto& a, const auto& b) {
     return a.second != b.second ? a.second < b.second : a.first < b.first;
   });
   hits.erase(std::unique(hits.begin(), hits.end(),
@@ -375,7 +394,7 @@ int InsideOracle::crossings(std::vector<std::pair<float, unsigned>>& hits, const
   if (hits.empty()) return 0;
   const double scale = 1.0 / norm(dir);  // t is in units of |dir|
   if (impl_->groups == 1) {
-    std::sort(hits.begin(), hits.end());
+    sort_hits(hits, std::less<>());
     int count = 1;
     float last = hits[0].first;
     for (size_t i = 1; i < hits.size(); ++i) {
@@ -389,7 +408,7 @@ int InsideOracle::crossings(std::vector<std::pair<float, unsigned>>& hits, const
   }
   // Several closed shells: crossings counted per parity group; the result is odd (inside) when
   // the point is inside any group.
-  std::sort(hits.begin(), hits.end(), [&](const auto& a, const auto& b) {
+  sort_hits(hits, [&](const auto& a, const auto& b) {
     const uint32_t ga = impl_->group[a.second], gb = impl_->group[b.second];
     return ga != gb ? ga < gb : a.first < b.first;
   });
