@@ -42,6 +42,7 @@ struct Timings {
   double read = 0, extract = 0, preprocess = 0, decompose = 0, encode = 0, job = 0, write = 0;
   double massing = 0;  // massing analytics (pipeline/massing.hpp), a part of encode
   double check = 0;    // checking (and repairing) the parts on the output grid, a part of encode
+  double cpu = 0;      // CPU seconds of the job over every thread that worked for it (pipeline/job_cpu.hpp)
 };
 
 struct Sizes {

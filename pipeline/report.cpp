@@ -71,6 +71,7 @@ json building_report(const BuildingOutcome& b) {
                   {"encode", secs(b.time.encode)},
                   {"check", secs(b.time.check)},
                   {"job", secs(b.time.job)},
+                  {"cpu", secs(b.time.cpu)},
                   {"write", secs(b.time.write)}};
   j["timings"]["massing"] = secs(b.time.massing);
   j["sizes"] = {{"input_vertices", b.size.input_vertices},

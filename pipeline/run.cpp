@@ -31,6 +31,7 @@
 #include "pipeline/crash_guard.hpp"
 #include "pipeline/interrupt.hpp"
 #include "pipeline/job.hpp"
+#include "pipeline/job_cpu.hpp"
 #include "pipeline/level_views.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/report.hpp"
@@ -316,12 +317,17 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     // that finishes a small building helps with its parallel steps before it takes the next one,
     // so the largest building takes about its time alone (docs/design.md, "Largest buildings
     // first").
+    const double cpu0 = thread_cpu_seconds();
+    double helpers = 0;
     if (w->largest_first && res.threads > 1) {
       tbb::task_arena heavy(res.threads, 1, tbb::task_arena::priority::high);
+      ArenaWorkerCpu workers(heavy);
       w->outcome = heavy.execute(building);
+      helpers = workers.seconds();
     } else {
       w->outcome = building();
     }
+    w->outcome.time.cpu = thread_cpu_seconds() - cpu0 + helpers;
     return w;
   });
   tbb::flow::sequencer_node<Msg> order(g, [](const Msg& w) { return w->sequence; });

@@ -43,12 +43,15 @@ library only.
      cpu s         user + sys of the process (/usr/bin/time; without it getrusage of children)
      peak MB       maximum resident set size (/usr/bin/time; without it the report's peak_rss_mb)
      bldg/s        buildings / wall s
-     eff           parallel efficiency = sum of buildings[].timings.job / (wall s x threads)
-                   (threads as the report states them)
+     eff           parallel efficiency = sum of buildings[].timings.cpu / (wall s x threads)
+                   (threads as the report states them). timings.cpu is a job's CPU time over
+                   every thread that worked for it (pipeline/job_cpu.hpp). Reports without it
+                   (older binaries) use the job's wall time instead, marked "*": that undercounts
+                   a building whose parallel steps other threads help with
      cpu%          CPU utilisation = cpu s / (wall s x threads). Job times are wall clock per
                    job: when their sum is well above the process CPU (marked "contended"), the
                    workers waited for a core (other load on the machine), which inflates the
-                   job times and eff; compare cpu s then
+                   job times; compare cpu s then
      job med/p99/max  of buildings[].timings.job over the buildings that are not skipped
                    (p99 = nearest rank)
      statuses      the report's counts: ok / partial / failed / skipped
@@ -680,16 +683,21 @@ def run_once(binary, side_args, inp, fmt, run_dir, args, n, time_bin, lod9=False
     jobs_all = [b["timings"]["job"] for b in blds if isinstance(b.get("timings"), dict) and "job" in b["timings"]]
     jobs = sorted(b["timings"]["job"] for b in blds
                   if b.get("status") != "skipped" and isinstance(b.get("timings"), dict) and "job" in b["timings"])
+    cpus = [b["timings"]["cpu"] for b in blds if isinstance(b.get("timings"), dict) and "cpu" in b["timings"]]
     outputs = r.get("outputs", {})
     del r, blds
     rec["job_sum_s"] = round(sum(jobs_all), 3)
+    # efficiency from the jobs' CPU time where the report has it (see eff above), else their wall time
+    rec["job_cpu_sum_s"] = round(sum(cpus), 3) if cpus and len(cpus) == len(jobs_all) else None
+    rec["efficiency_basis"] = "job cpu" if rec["job_cpu_sum_s"] is not None else "job wall"
     rec["job_median_s"] = round(statistics.median(jobs), 4) if jobs else None
     rec["job_p99_s"] = round(pct_nearest(jobs, 0.99), 4) if jobs else None
     rec["job_max_s"] = round(jobs[-1], 4) if jobs else None
     rec["jobs_counted"] = len(jobs)
     thr = rec["threads"] or args.threads
     rec["buildings_per_s"] = round(rec["buildings"] / wall, 3) if wall > 0 else None
-    rec["parallel_efficiency"] = round(rec["job_sum_s"] / (wall * thr), 4) if wall > 0 and thr else None
+    eff_sum = rec["job_cpu_sum_s"] if rec["job_cpu_sum_s"] is not None else rec["job_sum_s"]
+    rec["parallel_efficiency"] = round(eff_sum / (wall * thr), 4) if wall > 0 and thr else None
     rec["cpu_utilisation"] = round(rec["cpu_s"] / (wall * thr), 4) if wall > 0 and thr else None
     # job times are wall clock per job: well above the process CPU they mean the workers waited
     # for a core (other load on the machine), which inflates the job times and the efficiency
@@ -733,7 +741,7 @@ def row(r):
     f = lambda v, fmt: (format(v, fmt) if v is not None else "-")
     s = (f"{r['n']:>7} {r['format']:<5} {r['side']:<9} {r['rep']:>3} {r['buildings']:>7} {f(r['wall_s'], '9.1f')} "
          f"{f(r['cpu_s'], '9.1f')} {f(r['peak_rss_mb'], '8.1f')} {f(r['buildings_per_s'], '8.2f')} "
-         f"{f(r['parallel_efficiency'], '5.2f')} {f(r['cpu_utilisation'], '5.2f')} {f(r['job_median_s'], '8.3f')} {f(r['job_p99_s'], '8.2f')} "
+         f"{f(r['parallel_efficiency'], '4.2f')}{'*' if r.get('efficiency_basis') == 'job wall' else ' '} {f(r['cpu_utilisation'], '5.2f')} {f(r['job_median_s'], '8.3f')} {f(r['job_p99_s'], '8.2f')} "
          f"{f(r['job_max_s'], '8.2f')}  {c['ok']}/{c['partial']}/{c['failed']}/{c['skipped']}")
     if r.get("contended"):
         s += "  (contended: job times sum > CPU)"
@@ -911,6 +919,8 @@ def main(argv):
                     failed |= not rec["ok"]
 
     runs = [r for r in result["runs"] if r["ok"]]
+    if any(r.get("efficiency_basis") == "job wall" for r in runs):
+        log("* eff from the jobs' wall times: that report has no timings.cpu (an older binary)")
 
     def sel(n, fmt, side):
         return [r for r in runs if r["n"] == n and r["format"] == fmt and r["side"] == side]

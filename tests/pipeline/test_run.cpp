@@ -250,6 +250,18 @@ TEST(Run, LargestFirstStartsTheLargestAndKeepsTheOutputsInInputOrder) {
     else EXPECT_FALSE(vc["fast_path_reason"].get<std::string>().empty()) << building["id"];
   }
   EXPECT_GE(fast, 12u);
+  // Each job's CPU time (pipeline/job_cpu.hpp), over every thread that worked for it: the
+  // two-thread run with a window of two starts buildings out of turn in their own arena.
+  const json rc = json::parse(mc::test::slurp(c.report));
+  double jobs_cpu = 0;
+  for (const json& building : rc["buildings"]) {
+    if (!building.contains("timings")) continue;
+    const double cpu = building["timings"]["cpu"].get<double>();
+    EXPECT_GT(cpu, 0) << building["id"];
+    jobs_cpu += cpu;
+  }
+  EXPECT_GT(jobs_cpu, 0);
+  EXPECT_LE(jobs_cpu, 2 * rc["wall_seconds"].get<double>() + 0.05);  // nothing counted twice
   std::istringstream lines(mc::test::slurp(input));
   std::string line;
   std::getline(lines, line);
