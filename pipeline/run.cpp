@@ -323,7 +323,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       tbb::task_arena heavy(res.threads, 1, tbb::task_arena::priority::high);
       ArenaWorkerCpu workers(heavy);
       w->outcome = heavy.execute(building);
-      helpers = workers.seconds();
+      helpers = workers.close();
     } else {
       w->outcome = building();
     }

@@ -44,7 +44,7 @@ TEST(JobCpu, ArenaWorkersAndTheCallingThreadCoverEveryTask) {
         tasks.fetch_add(mc::pipeline::thread_cpu_seconds() - t0);
       });
     });
-    workers = observer.seconds();
+    workers = observer.close();
   }
   const double self = mc::pipeline::thread_cpu_seconds() - self0;
   const double process = process_cpu_seconds() - process0;
