@@ -1,7 +1,8 @@
-// The CPU time a building's job takes, over every thread that works for it
+// CPU time: the process's, a thread's, and a building's job over every thread that works for it
 // (docs/design.md, "Largest buildings first"; the city benchmark's parallel efficiency).
 #pragma once
 #include <pthread.h>
+#include <sys/resource.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_scheduler_observer.h>
 
@@ -21,6 +22,14 @@ inline double cpu_seconds_of(clockid_t clock) {
 
 // CPU seconds of the calling thread so far.
 inline double thread_cpu_seconds() { return cpu_seconds_of(CLOCK_THREAD_CPUTIME_ID); }
+
+// User + system CPU seconds of the whole process so far (every thread).
+inline double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+}
 
 // The CPU seconds that worker threads spend in one arena, each from entering it to leaving it.
 // The thread that runs the arena's work (`execute`) is not counted: it measures its own time. A

@@ -65,14 +65,6 @@ struct Work {
 };
 using Msg = std::shared_ptr<Work>;
 
-// User + system CPU seconds of the whole process so far (every thread).
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
-}
-
 double peak_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -313,12 +305,12 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
       return cache ? cache->run(std::move(w->feature), header, params, rc)
                    : run_building(std::move(w->feature), header, params, rc);
     };
+    const double cpu0 = thread_cpu_seconds();
+    double helpers = 0;  // CPU seconds of other threads in the building's arena
     // A building started out of turn (the largest read) runs in an arena of high priority: a thread
     // that finishes a small building helps with its parallel steps before it takes the next one,
     // so the largest building takes about its time alone (docs/design.md, "Largest buildings
     // first").
-    const double cpu0 = thread_cpu_seconds();
-    double helpers = 0;
     if (w->largest_first && res.threads > 1) {
       tbb::task_arena heavy(res.threads, 1, tbb::task_arena::priority::high);
       ArenaWorkerCpu workers(heavy);
@@ -428,7 +420,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
                  {"in_flight", res.in_flight},
                  {"wall_seconds", res.wall_seconds},
                  {"buildings_per_second", res.wall_seconds > 0 ? res.buildings / res.wall_seconds : 0.0},
-                 {"cpu_seconds", std::round(cpu_seconds() * 1e3) / 1e3},
+                 {"cpu_seconds", std::round(process_cpu_seconds() * 1e3) / 1e3},
                  {"peak_rss_mb", res.peak_rss_mb},
                  {"features", res.features},
                  {"building_count", res.buildings},

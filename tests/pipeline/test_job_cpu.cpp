@@ -2,20 +2,12 @@
 #include "pipeline/job_cpu.hpp"
 
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <cmath>
 
 namespace {
-
-double process_cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
-}
 
 // Busy work whose result the compiler cannot drop.
 double spin(int n) {
@@ -32,7 +24,7 @@ TEST(JobCpu, ArenaWorkersAndTheCallingThreadCoverEveryTask) {
   tbb::task_arena arena(2, 1, tbb::task_arena::priority::high);
   std::atomic<double> tasks{0};
   std::atomic<double> sink{0};
-  const double process0 = process_cpu_seconds();
+  const double process0 = mc::pipeline::process_cpu_seconds();
   const double self0 = mc::pipeline::thread_cpu_seconds();
   double workers = 0;
   {
@@ -47,7 +39,7 @@ TEST(JobCpu, ArenaWorkersAndTheCallingThreadCoverEveryTask) {
     workers = observer.close();
   }
   const double self = mc::pipeline::thread_cpu_seconds() - self0;
-  const double process = process_cpu_seconds() - process0;
+  const double process = mc::pipeline::process_cpu_seconds() - process0;
   EXPECT_GT(sink.load(), 0);
   ASSERT_GT(tasks.load(), 0.05);  // enough work to measure
   EXPECT_GE(workers, 0);
