@@ -107,6 +107,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
     if (li == 0 && p.first_level_candidates >= 0) level_params.max_candidates = p.first_level_candidates;
     AnalysisContext ctx = make_context(pre, level_params, level.lod);
     ctx.hulls = &hulls;
+    LevelAnalyses analyses;
     for (LevelPart& w : work) w.cells = current_leaves(cx, w.cells);
     if (Clock::now() <= deadline) {
       std::vector<PreparedPart> prepared;
@@ -147,6 +148,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       work = std::move(next);
       if (p.revisit_boundaries && li > 0)  // (takes its own copy of prev: the undo below needs it)
         revisit_boundaries(pre, p, prev, work, ctx, obj, deadline, level);
+      ctx.parts = &analyses;  // from here on the complex does not change within the level
       if (p.merge_tiny_parts) merge_tiny_parts(cx, work, 0.1 * level.lod * total_volume, &hulls);
       if (p.merge_convex_parts) merge_convex_neighbours(pre, work, ctx, obj);
       if (p.uncut_convexity < 1) refuse_costly_cuts(pre, p, prev, work, ctx, obj);

@@ -146,8 +146,30 @@ const PlaneResolver kNoNewPlanes = [](const Plane&, const std::vector<uint32_t>&
 std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls,
                                         const std::vector<LevelPart>& work, const AnalysisContext& ctx) {
   std::vector<PartAnalysis> info(work.size());
-  tbb::parallel_for(size_t(0), work.size(),
-                    [&](size_t i) { info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes); });
+  LevelAnalyses* memo = ctx.parts;
+  if (memo && memo->cells != space.cells) {  // another space: other bits
+    memo->by_part_cells.clear();
+    memo->cells = space.cells;
+  }
+  std::vector<std::vector<uint32_t>> keys(work.size());
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < work.size(); ++i) {
+    if (memo) {
+      keys[i] = work[i].cells;
+      std::sort(keys[i].begin(), keys[i].end());
+      if (auto it = memo->by_part_cells.find(keys[i]); it != memo->by_part_cells.end()) {
+        info[i] = it->second;
+        continue;
+      }
+    }
+    todo.push_back(i);
+  }
+  tbb::parallel_for(size_t(0), todo.size(), [&](size_t k) {
+    const size_t i = todo[k];
+    info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes);
+  });
+  if (memo)
+    for (size_t i : todo) memo->by_part_cells.emplace(std::move(keys[i]), info[i]);
   return info;
 }
 

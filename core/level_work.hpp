@@ -5,6 +5,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <map>
 #include <unordered_map>
 #include <vector>
 
@@ -12,6 +13,20 @@
 #include "core/part.hpp"
 #include "core/preprocess.hpp"
 #include "core/search.hpp"
+
+namespace mc {
+
+// The analyses of a level's whole parts, shared by the level passes that follow the searches
+// (the convex merge, the undo of costly cuts and the level's statistics each analyse every
+// part; most parts are the same from one pass to the next). An analysis depends only on the
+// part's cells, the space (`cells`: its cells in local order, which fixes the bits), the level's
+// context and the complex, which these passes do not change (docs/algorithm.md §14).
+struct LevelAnalyses {
+  std::vector<uint32_t> cells;                                  // the space's cells
+  std::map<std::vector<uint32_t>, PartAnalysis> by_part_cells;  // sorted cells of a part -> analysis
+};
+
+}  // namespace mc
 
 namespace mc::level {
 
@@ -86,6 +101,7 @@ struct LevelSpace {
 extern const PlaneResolver kNoNewPlanes;
 
 // Every part of a level analysed, in parallel (the analysis only reads the complex); in order.
+// With `ctx.parts`, a part analysed before in the same space is taken from there.
 std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace& ls,
                                         const std::vector<LevelPart>& work, const AnalysisContext& ctx);
 

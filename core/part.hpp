@@ -61,6 +61,7 @@ struct AnalysisContext {
   double level = 0;            // LoD threshold l (significance: weight >= l * a_diag)
   BBox box;                    // the input box (snapping)
   HullCache* hulls = nullptr;  // the building's hulls (core/hull_cache.hpp); null = computed each time
+  struct LevelAnalyses* parts = nullptr;  // the level passes' analyses of whole parts (core/level_work.hpp)
 };
 
 // Maps a generated candidate plane (bisector, vertical or horizontal plane through a line) to a

@@ -1,4 +1,5 @@
 #include "core/decompose.hpp"
+#include "core/level_work.hpp"
 
 #include <gtest/gtest.h>
 
@@ -298,6 +299,58 @@ TEST(Decompose, PartsAreCutAfterTheirNeighboursAreRefined) {
     ++checked;
   }
   EXPECT_EQ(checked, 1);
+}
+
+// The level passes share their analyses of whole parts (core/level_work.hpp, LevelAnalyses): a
+// part analysed before in the same space is taken from the memo, and is what a fresh analysis
+// gives; a part not seen before, or another space, is analysed anew.
+TEST(Decompose, LevelPassesShareTheirPartAnalyses) {
+  const std::optional<Outcome> r = run_sample("sample22", DecomposeParams{});
+  ASSERT_TRUE(r) << "sample22 not found in " << test::samples_dir();
+  const CellComplex& cx = *r->pre.complex;
+  const LevelResult& last = r->dec.levels.back();
+  ASSERT_GE(last.parts.size(), 3u);
+  std::vector<level::LevelPart> work;
+  for (const PartResult& part : last.parts)
+    work.push_back({level::current_leaves(cx, part.cells), part.component});
+  const DecomposeParams dp;
+  AnalysisContext plain = level::make_context(r->pre, dp, last.lod);
+  AnalysisContext memoised = plain;
+  LevelAnalyses memo;
+  memoised.parts = &memo;
+  auto same = [](const PartAnalysis& a, const PartAnalysis& b) {
+    EXPECT_EQ(a.bits, b.bits);
+    EXPECT_EQ(a.hash, b.hash);
+    EXPECT_EQ(a.volume, b.volume);
+    EXPECT_EQ(a.hull_volume, b.hull_volume);
+    EXPECT_EQ(a.delta, b.delta);
+    EXPECT_EQ(a.e_all, b.e_all);
+    EXPECT_EQ(a.e_sig, b.e_sig);
+    EXPECT_EQ(a.pinch_edges, b.pinch_edges);
+    EXPECT_EQ(a.lines.size(), b.lines.size());
+    EXPECT_EQ(a.candidates, b.candidates);
+  };
+  const level::LevelSpace ls(cx, work);
+  const auto fresh = level::analyze_parts(ls.space, ls, work, plain);
+  const auto first = level::analyze_parts(ls.space, ls, work, memoised);
+  EXPECT_EQ(memo.by_part_cells.size(), work.size());
+  for (size_t i = 0; i < work.size(); ++i) same(fresh[i], first[i]);
+  // The first two parts merged, as the convex merge does: one new analysis, the others reused.
+  std::vector<level::LevelPart> merged = work;
+  merged[0].cells.insert(merged[0].cells.end(), merged[1].cells.begin(), merged[1].cells.end());
+  merged.erase(merged.begin() + 1);
+  const level::LevelSpace ls2(cx, merged);  // the same cells, so the same space
+  const auto again = level::analyze_parts(ls2.space, ls2, merged, memoised);
+  EXPECT_EQ(memo.by_part_cells.size(), work.size() + 1);
+  const auto merged_fresh = level::analyze_parts(ls2.space, ls2, merged, plain);
+  for (size_t i = 0; i < merged.size(); ++i) same(merged_fresh[i], again[i]);
+  // Without the first part the space is another: the memo starts again.
+  const std::vector<level::LevelPart> rest(work.begin() + 1, work.end());
+  const level::LevelSpace ls3(cx, rest);
+  const auto other = level::analyze_parts(ls3.space, ls3, rest, memoised);
+  EXPECT_EQ(memo.by_part_cells.size(), rest.size());
+  const auto other_fresh = level::analyze_parts(ls3.space, ls3, rest, plain);
+  for (size_t i = 0; i < rest.size(); ++i) same(other_fresh[i], other[i]);
 }
 
 }  // namespace
