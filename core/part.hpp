@@ -52,16 +52,18 @@ struct ConcaveLine {
   double length() const { return t1 - t0; }
 };
 
+struct LevelAnalyses;  // core/level_work.hpp
+
 // Settings that fix how parts are analysed at one LoD level.
 struct AnalysisContext {
   const DecomposeParams* dec = nullptr;
-  double dist = 0;             // δ
-  double angle_rad = 0;        // θa
-  double a_diag = 1;           // area of the input box's vertical diagonal plane
-  double level = 0;            // LoD threshold l (significance: weight >= l * a_diag)
-  BBox box;                    // the input box (snapping)
-  HullCache* hulls = nullptr;  // the building's hulls (core/hull_cache.hpp); null = computed each time
-  struct LevelAnalyses* parts = nullptr;  // the level passes' analyses of whole parts (core/level_work.hpp)
+  double dist = 0;                 // δ
+  double angle_rad = 0;            // θa
+  double a_diag = 1;               // area of the input box's vertical diagonal plane
+  double level = 0;                // LoD threshold l (significance: weight >= l * a_diag)
+  BBox box;                        // the input box (snapping)
+  HullCache* hulls = nullptr;      // the building's hulls (core/hull_cache.hpp); null = computed each time
+  LevelAnalyses* parts = nullptr;  // the level passes' analyses of whole parts (core/level_work.hpp)
 };
 
 // Maps a generated candidate plane (bisector, vertical or horizontal plane through a line) to a
