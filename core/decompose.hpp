@@ -49,6 +49,12 @@ struct Decomposition {
 
 Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time_point deadline);
 
+// decompose() with the fidelity measure that preprocess() deferred (measure_fidelity()) running
+// beside it: the levels leave threads idle between their parallel steps, and the measure fills
+// them (docs/design.md, "Fidelity beside the levels").
+Decomposition decompose_measuring_fidelity(Preprocessed& pre, const DecomposeParams& p,
+                                           Clock::time_point deadline);
+
 // The closed surface of one part in input coordinates: coplanar faces merged, cut faces labelled
 // "ClosureSurface", others with the label of the input plane they lie on.
 PolygonMesh part_mesh(const Preprocessed& pre, const PartResult& part);

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <tbb/task_group.h>
+
 #include "core/carve.hpp"
 #include "core/corner_snap.hpp"
 #include "core/hausdorff.hpp"
@@ -30,10 +32,39 @@ constexpr double kOpenRelabel = 0.02;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+
+// Joins a task group when the scope ends, also on a throw (its own exception is then dropped: the
+// one in flight is the error).
+struct WaitOnExit {
+  tbb::task_group& group;
+  ~WaitOnExit() {
+    try {
+      group.wait();
+    } catch (...) {}
+  }
+};
 }  // namespace
 
+struct FidelityInputs {
+  TriangleSoup input, cell;  // the input's triangles and the cell's boundary, centred frame
+  double step = 0;           // sampling step
+};
+
+void measure_fidelity(Preprocessed& pre) {
+  if (!pre.pending_fidelity) return;
+  const FidelityInputs& f = *pre.pending_fidelity;
+  const HausdorffResult h = hausdorff(f.input, f.cell, f.step);
+  pre.hausdorff = h.symmetric;
+  pre.hausdorff_in_to_cell = h.a_to_b;
+  pre.hausdorff_cell_to_in = h.b_to_a;
+  pre.mean_distance = h.mean_a_to_b;
+  pre.mean_distance_cell_to_in = h.mean_b_to_a;
+  pre.mean_distance_symmetric = h.mean_symmetric;
+  pre.pending_fidelity.reset();
+}
+
 Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline,
-                        double terrain_z) {
+                        double terrain_z, bool defer_fidelity) {
   const auto t0 = Clock::now();
   Preprocessed out;
   out.input_faces = input.faces.size();
@@ -72,6 +103,23 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   translate(oracle_mesh, -out.offset);
   for (const Vec3& v : mesh.vertices) out.box.add(v);
   out.labels = mesh.semantic_labels;
+  const OpenInput open = analyse_open_input(mesh, out.dist);
+  out.open_input = open.open(out.cell_size);
+
+  // The fast path's validity check (docs/algorithm.md §6.6) reads only the oracle's mesh, so it
+  // runs beside the planes and the oracle's build; the decision waits for it before the carving.
+  const TriangleSoup oracle_tris = triangulate(oracle_mesh);
+  const bool check_fast_path = p.fast_path && !out.open_input && !oracle_tris.triangles.empty();
+  SolidCheck check;
+  tbb::task_group checking;
+  const WaitOnExit join_checking{checking};  // (a throw below must not leave the task running)
+  if (check_fast_path) {
+    checking.run([&] {
+      SolidTolerances tol;
+      tol.snap = diag0 * 1e-9;  // the oracle's weld: its topology is the one checked
+      check = check_solid(oracle_mesh, tol, false);
+    });
+  }
 
   // Planes.
   PreprocessParams resolved = p;
@@ -117,7 +165,6 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   }
   // Open inputs (missing walls, grounds, roofs): the vertical planes of their open boundary,
   // after the hole planes, so that a missing wall is closed where its roof or ground ends.
-  const OpenInput open = analyse_open_input(mesh, out.dist);
   // The ground level of the vertical vote: the input's lowest height, or for a model with neither
   // a ground nor walls (roofs only) the terrain height the file gives, when it is lower (§6.4).
   double ground_z = out.box.lo.z;
@@ -134,7 +181,6 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
       cbox.lo.z = std::min(cbox.lo.z, ground_z - pad);
     }
   }
-  out.open_input = open.open(out.cell_size);
   // An open input carves its missing faces (hole planes) in their turn among the regions, by size
   // (stable: the regions keep their order). After a smaller region that shares a corner with it
   // (a few-centimetre wall at the end of a missing party wall) a missing face's plane would meet
@@ -193,7 +239,6 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // Oracles and carving.
   const TriangleSoup tris = triangulate(mesh);
   if (tris.triangles.empty()) throw std::runtime_error("degenerate geometry: nothing to triangulate");
-  const TriangleSoup oracle_tris = triangulate(oracle_mesh);
   const TriangleSoup& osoup = oracle_tris.triangles.empty() ? tris : oracle_tris;
   const PolygonMesh& omesh = oracle_tris.triangles.empty() ? mesh : oracle_mesh;
   InsideOracle oracle(osoup, p.oracle_rays, p.seed);
@@ -206,9 +251,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   } else if (oracle_tris.triangles.empty()) {
     out.fast_path_reason = "no valid face at the oracle's weld";
   } else {
-    SolidTolerances tol;
-    tol.snap = diag0 * 1e-9;  // the oracle's weld: its topology is the one checked
-    const SolidCheck check = check_solid(oracle_mesh, tol, false);
+    checking.wait();
     // (non-planar faces, 203/204, do not matter to the rays)
     out.fast_path = check.closed_manifold;
     out.fast_path_reason = "not a closed 2-manifold";
@@ -404,16 +447,12 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   out.closed = s.closed();
   out.manifold = s.nonmanifold_edges == 0;
   if (p.compute_hausdorff) {
-    TriangleSoup cell;
-    boundary_triangles(*out.complex, all, Vec3{}, cell.vertices, cell.triangles);
-    const double step = std::max(out.box.diagonal() * p.hausdorff_error * 10, out.cell_size / 2);
-    const HausdorffResult h = hausdorff(tris, cell, step);
-    out.hausdorff = h.symmetric;
-    out.hausdorff_in_to_cell = h.a_to_b;
-    out.hausdorff_cell_to_in = h.b_to_a;
-    out.mean_distance = h.mean_a_to_b;
-    out.mean_distance_cell_to_in = h.mean_b_to_a;
-    out.mean_distance_symmetric = h.mean_symmetric;
+    auto f = std::make_shared<FidelityInputs>();
+    boundary_triangles(*out.complex, all, Vec3{}, f->cell.vertices, f->cell.triangles);
+    f->step = std::max(out.box.diagonal() * p.hausdorff_error * 10, out.cell_size / 2);
+    f->input = tris;
+    out.pending_fidelity = std::move(f);
+    if (!defer_fidelity) measure_fidelity(out);
   }
   out.seconds = seconds_since(t0);
   return out;

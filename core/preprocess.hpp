@@ -36,6 +36,8 @@ struct VolumeCheck {
   bool flagged = false;     // the disagreement remains beyond the threshold
 };
 
+struct FidelityInputs;  // core/preprocess.cpp
+
 struct Preprocessed {
   // Frame: complex coordinates c map to input coordinates by from_z_up(c + offset, up_axis).
   Vec3 offset;
@@ -75,6 +77,9 @@ struct Preprocessed {
   bool truncated = false;
   double seconds = 0;
   std::vector<std::string> problems;
+  // What the fidelity measure needs when preprocess() defers it (measure_fidelity()): its own
+  // copies, so that it may run while the decomposition changes the complex. Null otherwise.
+  std::shared_ptr<FidelityInputs> pending_fidelity;
 
   Vec3 to_input(const Vec3& p) const;  // complex -> input coordinates
   int32_t label_of_plane(uint32_t plane) const {
@@ -87,7 +92,15 @@ struct Preprocessed {
 // `terrain_z` (input coordinates, NaN = unknown): the terrain height of the building's site, e.g.
 // from a file attribute; used only as the ground level of a model without ground and walls
 // (docs/algorithm.md §6.4).
+// `defer_fidelity`: the Hausdorff measure of the cell against the input is left to
+// measure_fidelity(), which the caller runs beside decompose() (decompose_measuring_fidelity(),
+// core/decompose.hpp); otherwise preprocess() measures it before it returns.
 Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clock::time_point deadline,
-                        double terrain_z = std::numeric_limits<double>::quiet_NaN());
+                        double terrain_z = std::numeric_limits<double>::quiet_NaN(),
+                        bool defer_fidelity = false);
+
+// Measures the fidelity that preprocess() deferred and fills `pre`'s Hausdorff fields; reads
+// only `pre.pending_fidelity` (then released). Does nothing when nothing is pending.
+void measure_fidelity(Preprocessed& pre);
 
 }  // namespace mc

@@ -294,7 +294,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   auto t = Clock::now();
   Preprocessed pre;
   try {
-    pre = preprocess(in.mesh, p.pre, deadline, terrain_height(out.feature));  // pipeline/terrain.hpp
+    // (terrain: pipeline/terrain.hpp; the fidelity measure runs beside the levels)
+    pre = preprocess(in.mesh, p.pre, deadline, terrain_height(out.feature), /*defer_fidelity=*/true);
   } catch (const std::exception& e) {
     // Carving cut short by the deadline finds no inside cell: the deadline is the reason.
     if (Clock::now() >= deadline)
@@ -311,7 +312,6 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   out.size.dropped_components = pre.dropped_components;
   out.size.cell_closed = pre.closed;
   out.size.cell_manifold = pre.manifold;
-  if (pre.hausdorff >= 0) out.hausdorff = pre.hausdorff;
   {  // the singleton cell's volume check (docs/algorithm.md §6.5)
     const mc::VolumeCheck& v = pre.volume_check;
     auto& o = out.volume_check;
@@ -332,8 +332,9 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   if (pre.components.empty()) throw std::runtime_error("preprocessing produced no interior cells");
 
   t = Clock::now();
-  Decomposition dec = decompose(pre, p.dec, deadline);
+  Decomposition dec = decompose_measuring_fidelity(pre, p.dec, deadline);
   out.time.decompose = since(t);
+  if (pre.hausdorff >= 0) out.hausdorff = pre.hausdorff;
   out.size.concave_edges = dec.concave_edges;
 
   t = Clock::now();

@@ -7,6 +7,7 @@
 // (`NAME.off_config.json`); without --config, `IN_config.json` beside the input is used when
 // present (as the paper's samples ship), otherwise the defaults with automatic resolution.
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -212,16 +214,16 @@ int main(int argc, char** argv) {
     const bool obj = input.size() > 4 && input.substr(input.size() - 4) == ".obj";
     const mc::PolygonMesh mesh =
         obj ? mc::io::read_obj(input, &problems) : mc::io::read_off(input, &problems);
-    mc::Preprocessed pre = mc::preprocess(mesh, params.pre, deadline);
+    // The fidelity measure runs beside the levels (decompose_measuring_fidelity).
+    mc::Preprocessed pre =
+        mc::preprocess(mesh, params.pre, deadline, std::numeric_limits<double>::quiet_NaN(),
+                       /*defer_fidelity=*/true);
     problems.insert(problems.end(), pre.problems.begin(), pre.problems.end());
-    mc::io::write_off(out + "/" + stem + "_singleton.off", mc::singleton_mesh(pre));
+    // The singleton cell's surface is taken before the levels refine its cells, and written with
+    // the levels' files.
+    const mc::PolygonMesh singleton = mc::singleton_mesh(pre);
+    const std::string singleton_path = out + "/" + stem + "_singleton.off";
     report["preprocess"] = {{"seconds", pre.seconds},
-                            {"hausdorff", pre.hausdorff},
-                            {"hausdorff_input_to_cell", pre.hausdorff_in_to_cell},
-                            {"hausdorff_cell_to_input", pre.hausdorff_cell_to_in},
-                            {"mean_distance", pre.mean_distance},
-                            {"mean_distance_cell_to_input", pre.mean_distance_cell_to_in},
-                            {"mean_distance_symmetric", pre.mean_distance_symmetric},
                             {"planes", pre.regions},
                             {"hole_planes", pre.hole_planes},
                             {"anchored_planes", pre.anchored_planes},
@@ -264,14 +266,21 @@ int main(int argc, char** argv) {
     if (cmd == "preprocess") {  // concave edges of the singleton cell (no search)
       mc::DecomposeParams none = params.dec;
       none.levels.clear();
-      report["preprocess"]["concave_edges"] = mc::decompose(pre, none, deadline).concave_edges;
+      report["preprocess"]["concave_edges"] =
+          mc::decompose_measuring_fidelity(pre, none, deadline).concave_edges;
+      mc::io::write_off(singleton_path, singleton);
     }
     if (cmd == "decompose") {
-      const mc::Decomposition d = mc::decompose(pre, params.dec, deadline);
+      const mc::Decomposition d = mc::decompose_measuring_fidelity(pre, params.dec, deadline);
       report["preprocess"]["concave_edges"] = d.concave_edges;
+      // Every file at once: each level's parts only read the complex, and the files' syncs overlap.
+      tbb::parallel_for(size_t(0), d.levels.size() + 1, [&](size_t i) {
+        if (i == d.levels.size()) mc::io::write_off(singleton_path, singleton);
+        else
+          write_level_off(out + "/" + stem + "_lod_" + lod_name(d.levels[i].lod) + ".off", pre, d.levels[i]);
+      });
       json levels_json = json::array();
       for (const auto& level : d.levels) {
-        write_level_off(out + "/" + stem + "_lod_" + lod_name(level.lod) + ".off", pre, level);
         json parts = json::array();
         for (const auto& p : level.parts)
           parts.push_back({{"volume", p.volume},
@@ -298,6 +307,12 @@ int main(int argc, char** argv) {
         report["reason"] = d.reason;
       }
     }
+    report["preprocess"]["hausdorff"] = pre.hausdorff;
+    report["preprocess"]["hausdorff_input_to_cell"] = pre.hausdorff_in_to_cell;
+    report["preprocess"]["hausdorff_cell_to_input"] = pre.hausdorff_cell_to_in;
+    report["preprocess"]["mean_distance"] = pre.mean_distance;
+    report["preprocess"]["mean_distance_cell_to_input"] = pre.mean_distance_cell_to_in;
+    report["preprocess"]["mean_distance_symmetric"] = pre.mean_distance_symmetric;
   } catch (const std::exception& e) {
     report["status"] = "failed";
     report["reason"] = e.what();

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <tuple>
@@ -351,6 +352,49 @@ TEST(Decompose, LevelPassesShareTheirPartAnalyses) {
   EXPECT_EQ(memo.by_part_cells.size(), rest.size());
   const auto other_fresh = level::analyze_parts(ls3.space, ls3, rest, plain);
   for (size_t i = 0; i < rest.size(); ++i) same(other_fresh[i], other[i]);
+}
+
+}  // namespace
+}  // namespace mc
+
+namespace mc {
+namespace {
+
+// The fidelity measure deferred by preprocess() and run beside the levels
+// (decompose_measuring_fidelity) gives the same Hausdorff distances as measured inline, and the
+// same levels as decompose() alone (sample3, a real input that is not a valid solid).
+TEST(Decompose, FidelityMeasuredBesideTheLevelsIsTheSame) {
+  int checked = 0;
+  for (const auto& s : test::samples()) {
+    if (s.name != "sample3") continue;
+    const PolygonMesh in = test::load_off(s.off.string());
+    PreprocessParams pp = test::paper_params(s);
+    pp.compute_hausdorff = true;
+    const auto deadline = Clock::now() + std::chrono::seconds(120);
+    Preprocessed inline_pre = preprocess(in, pp, deadline);
+    EXPECT_FALSE(inline_pre.pending_fidelity);
+    ASSERT_GT(inline_pre.hausdorff, 0);
+    Preprocessed deferred = preprocess(in, pp, deadline, std::numeric_limits<double>::quiet_NaN(), true);
+    ASSERT_TRUE(deferred.pending_fidelity);
+    EXPECT_EQ(deferred.hausdorff, -1);  // not measured yet
+    const DecomposeParams dp;
+    const Decomposition alone = decompose(inline_pre, dp, deadline);
+    const Decomposition beside = decompose_measuring_fidelity(deferred, dp, deadline);
+    EXPECT_FALSE(deferred.pending_fidelity);  // released once measured
+    EXPECT_EQ(deferred.hausdorff, inline_pre.hausdorff);
+    EXPECT_EQ(deferred.hausdorff_in_to_cell, inline_pre.hausdorff_in_to_cell);
+    EXPECT_EQ(deferred.hausdorff_cell_to_in, inline_pre.hausdorff_cell_to_in);
+    EXPECT_EQ(deferred.mean_distance, inline_pre.mean_distance);
+    EXPECT_EQ(deferred.mean_distance_cell_to_in, inline_pre.mean_distance_cell_to_in);
+    EXPECT_EQ(deferred.mean_distance_symmetric, inline_pre.mean_distance_symmetric);
+    ASSERT_EQ(alone.levels.size(), beside.levels.size());
+    for (size_t i = 0; i < alone.levels.size(); ++i) {
+      EXPECT_EQ(alone.levels[i].parts.size(), beside.levels[i].parts.size());
+      EXPECT_EQ(alone.levels[i].cost, beside.levels[i].cost);
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 1);
 }
 
 }  // namespace
