@@ -58,13 +58,22 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
       return hulls ? hulls->get(pts)->volume : convex_hull(pts).volume;
     };
     const double tol = 1e-9 * std::max(1.0, v_min);
-    int target = -1;
-    double best_growth = 0, best_area = 0;
-    for (const auto& [p, area] : shared) {
+    // Each neighbour's union evaluated in parallel (they only read the complex), then chosen in
+    // neighbour order as one after the other would.
+    const std::vector<std::pair<uint32_t, double>> options(shared.begin(), shared.end());
+    std::vector<std::optional<double>> growths(options.size());  // none: the union pinches
+    tbb::parallel_for(size_t(0), options.size(), [&](size_t i) {
+      const uint32_t p = options[i].first;
       std::vector<uint32_t> merged = parts[p].cells;
       merged.insert(merged.end(), parts[victim].cells.begin(), parts[victim].cells.end());
-      if (has_pinch_edge(cx, merged)) continue;
-      const double growth = hull_of(merged) - hull_of(parts[p].cells) - vol[victim];
+      if (!has_pinch_edge(cx, merged)) growths[i] = hull_of(merged) - hull_of(parts[p].cells) - vol[victim];
+    });
+    int target = -1;
+    double best_growth = 0, best_area = 0;
+    for (size_t i = 0; i < options.size(); ++i) {
+      const auto [p, area] = options[i];
+      if (!growths[i]) continue;
+      const double growth = *growths[i];
       if (target < 0 || growth < best_growth - tol || (growth <= best_growth + tol && area > best_area)) {
         target = static_cast<int>(p);
         best_growth = growth;
