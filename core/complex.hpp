@@ -89,6 +89,11 @@ class CellComplex {
   // Live leaf descendants of a (possibly split) cell, in BSP order.
   void leaves(uint32_t c, std::vector<uint32_t>& out) const;
   std::vector<uint32_t> live_cells() const;
+  // Builds the exact planes of the registry's planes added since the last call (the side
+  // predicates build them on first use). Until the next plane is added, vertex_side() and
+  // cell_side() then only read the complex and may run on several threads at once (CGAL's lazy
+  // kernel is thread-safe).
+  void prepare_side_predicates() { ensure_planes(); }
 
  private:
   struct Exact;  // CGAL objects, hidden to keep CGAL out of most translation units

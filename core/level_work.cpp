@@ -84,19 +84,20 @@ PreparedPart refine(Preprocessed& pre, const LevelPart& w, const AnalysisContext
   return pr;
 }
 
-// The refined space and the cells on each candidate's positive side (exact predicates: one
-// thread per complex).
+// The refined space (serial: the complex measures cells lazily) and the cells on each candidate's
+// positive side (exact predicates, one candidate per task once the exact planes are built).
 void finish_space(const Preprocessed& pre, PreparedPart& pr, const AnalysisContext& ctx) {
   if (!pr.search) return;
+  pre.complex->prepare_side_predicates();
   const CellComplex& cx = *pre.complex;
   pr.space = make_space(cx, std::vector<uint32_t>(pr.space.cells));
   const std::vector<uint32_t>& cells = pr.space.cells;
-  for (uint32_t plane : pr.input.pool) {
-    Bits pos(pr.space.words(), 0);
+  const std::vector<uint32_t>& pool = pr.input.pool;
+  pr.input.positive.assign(pool.size(), Bits(pr.space.words(), 0));
+  tbb::parallel_for(size_t(0), pool.size(), [&](size_t k) {
     for (uint32_t i = 0; i < cells.size(); ++i)
-      if (cx.cell_side(cells[i], plane) > 0) set_bit(pos, i);
-    pr.input.positive.push_back(std::move(pos));
-  }
+      if (cx.cell_side(cells[i], pool[k]) > 0) set_bit(pr.input.positive[k], i);
+  });
   pr.input.ctx = ctx;
 }
 

@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
 #include <map>
 #include <random>
 
@@ -135,6 +139,41 @@ TEST(CellComplex, ManyRandomSplitsKeepTheComplexClosedAndConforming) {
   expect_cells_closed(cx);
   expect_facets_shared(cx);
   EXPECT_NEAR(total_volume(cx), 1000.0, 1e-8);
+}
+
+// After prepare_side_predicates() the side predicates only read the complex: evaluated on two
+// threads at once they give what one thread gives (the level refinement relies on it,
+// core/level_work.cpp). The planes pass through vertices and along edges, where the exact
+// evaluation runs, and are added after the splits, so their exact planes are built lazily.
+TEST(CellComplex, SidePredicatesOnSeveralThreadsAfterPreparation) {
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box(10));
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), pos(1, 9);
+  for (int i = 0; i < 25; ++i) {
+    const Vec3 n{u(rng), u(rng), u(rng)};
+    const uint32_t p = reg.add({n, -dot(normalized(n), Vec3{pos(rng), pos(rng), pos(rng)}) * norm(n)});
+    for (uint32_t c : cx.live_cells()) cx.split(c, p);
+  }
+  std::vector<uint32_t> probes;  // planes through existing vertices (exact ties) and random ones
+  const std::vector<uint32_t> cells = cx.live_cells();
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 a = cx.point(cx.cell_vertices(cells[i % cells.size()])[0]);
+    const Vec3 n = i % 2 ? Vec3{1, 0, 0} : Vec3{u(rng), u(rng), u(rng)};
+    probes.push_back(reg.add({n, -dot(n, a)}));
+  }
+  cx.prepare_side_predicates();
+  std::vector<int> serial, parallel(cells.size() * probes.size());
+  for (uint32_t p : probes)
+    for (uint32_t c : cells) serial.push_back(cx.cell_side(c, p));
+  tbb::task_arena arena(2);
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), parallel.size(), size_t(1), [&](size_t k) {
+      parallel[k] = cx.cell_side(cells[k % cells.size()], probes[k / cells.size()]);
+    });
+  });
+  EXPECT_EQ(serial, parallel);
+  EXPECT_NE(std::count(serial.begin(), serial.end(), 0), 0);  // some probes cut cells
 }
 
 TEST(CellComplex, LeavesFollowTheBspTree) {
