@@ -1,6 +1,7 @@
 #include "core/carve.hpp"
 
 #include "core/surface.hpp"
+#include "core/thread_tag.hpp"
 
 #include <tbb/parallel_invoke.h>
 
@@ -324,8 +325,8 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       inside_label.resize(std::max(child[0], child[1]) + 1024, 0);
     double scores[2];
     size_t points[2] = {0, 0};
-    tbb::parallel_invoke([&] { scores[0] = vote(child[0], box[0], points[0]); },
-                         [&] { scores[1] = vote(child[1], box[1], points[1]); });
+    tbb::parallel_invoke(with_thread_tag([&] { scores[0] = vote(child[0], box[0], points[0]); }),
+                         with_thread_tag([&] { scores[1] = vote(child[1], box[1], points[1]); }));
     res.points += points[0] + points[1];
     for (int k = 0; k < 2; ++k) enqueue(child[k], scores[k], std::move(kept[k]));
   }

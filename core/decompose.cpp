@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <optional>
 #include <set>
@@ -17,6 +18,7 @@
 #include "core/search.hpp"
 #include "core/surface.hpp"
 #include "core/union_find.hpp"
+#include "core/thread_tag.hpp"
 
 namespace mc {
 
@@ -118,13 +120,14 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
         prepared.back().input.deadline = deadline;
       }
       for (PreparedPart& pr : prepared) finish_space(pre, pr, ctx);
-      tbb::parallel_for(size_t(0), prepared.size(), [&](size_t i) { finish_root(pre, prepared[i], ctx); });
+      tbb::parallel_for(size_t(0), prepared.size(),
+                        with_thread_tag([&](size_t i) { finish_root(pre, prepared[i], ctx); }));
       for (PreparedPart& pr : prepared) pr.input.space = &pr.space;
       std::vector<SearchResult> results(work.size());
       auto run_one = [&](size_t i) {
         if (prepared[i].search) results[i] = search(prepared[i].input, prepared[i].root);
       };
-      tbb::parallel_for(size_t(0), work.size(), run_one);
+      tbb::parallel_for(size_t(0), work.size(), with_thread_tag(run_one));
       std::vector<LevelPart> next;
       for (size_t i = 0; i < work.size(); ++i) {
         if (!prepared[i].search) {
@@ -169,9 +172,23 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
 Decomposition decompose_measuring_fidelity(Preprocessed& pre, const DecomposeParams& p,
                                            Clock::time_point deadline) {
   Decomposition out;
-  // (measure_fidelity() touches only pre.pending_fidelity and the Hausdorff fields, which
-  // decompose() never reads)
-  tbb::parallel_invoke([&] { measure_fidelity(pre); }, [&] { out = decompose(pre, p, deadline); });
+  // measure_fidelity() touches only pre.pending_fidelity and the Hausdorff fields, which
+  // decompose() never reads. Each side catches its own error: an exception escaping one would
+  // cancel the other's parallel loops halfway. The measure is taken whether or not the levels
+  // fail (a failed building still reports its cell's fidelity); the levels' error comes first.
+  std::exception_ptr measure_error, levels_error;
+  tbb::parallel_invoke(with_thread_tag([&] {
+                         try {
+                           measure_fidelity(pre);
+                         } catch (...) { measure_error = std::current_exception(); }
+                       }),
+                       with_thread_tag([&] {
+                         try {
+                           out = decompose(pre, p, deadline);
+                         } catch (...) { levels_error = std::current_exception(); }
+                       }));
+  if (levels_error) std::rethrow_exception(levels_error);
+  if (measure_error) std::rethrow_exception(measure_error);
   return out;
 }
 
@@ -225,20 +242,21 @@ std::vector<PolygonMesh> level_part_meshes(const Preprocessed& pre, const std::v
   // them (the drop rule depends on the part alone, so the others are already right).
   // Each part's surface only reads the complex: extracted in parallel, in part order.
   std::vector<Surface> surfaces(leaves.size());
-  tbb::parallel_for(size_t(0), leaves.size(), [&](size_t p) {
-    surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, nullptr});
-  });
+  tbb::parallel_for(size_t(0), leaves.size(), with_thread_tag([&](size_t p) {
+                      surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, nullptr});
+                    }));
   std::unordered_set<uint32_t> corners;
   for (const Surface& s : surfaces)
     for (const auto& f : s.faces)
       for (const auto& r : f.rings) corners.insert(r.begin(), r.end());
   std::vector<PolygonMesh> out(leaves.size());
-  tbb::parallel_for(size_t(0), leaves.size(), [&](size_t p) {
-    const auto& dropped = surfaces[p].dropped;
-    if (std::any_of(dropped.begin(), dropped.end(), [&](uint32_t v) { return corners.count(v) > 0; }))
-      surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, &corners});
-    out[p] = surface_to_mesh(pre, surfaces[p]);
-  });
+  tbb::parallel_for(
+      size_t(0), leaves.size(), with_thread_tag([&](size_t p) {
+        const auto& dropped = surfaces[p].dropped;
+        if (std::any_of(dropped.begin(), dropped.end(), [&](uint32_t v) { return corners.count(v) > 0; }))
+          surfaces[p] = extract_surface(cx, leaves[p], &solid, {&part_of, &corners});
+        out[p] = surface_to_mesh(pre, surfaces[p]);
+      }));
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include "core/aabb_triangles.hpp"
 #include "core/embree_device.hpp"
 #include "core/plane.hpp"
+#include "core/thread_tag.hpp"
 
 namespace mc {
 
@@ -265,11 +266,12 @@ class ClosestPoints {
 
 std::vector<double> distances(const ClosestPoints& to, const std::vector<K::Point_3>& pts) {
   std::vector<double> d(pts.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, d.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-    uint32_t hint = UINT32_MAX;
-    for (size_t i = r.begin(); i != r.end(); ++i)
-      d[i] = to.distance({pts[i].x(), pts[i].y(), pts[i].z()}, hint);
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, d.size(), 1024),
+                    with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
+                      uint32_t hint = UINT32_MAX;
+                      for (size_t i = r.begin(); i != r.end(); ++i)
+                        d[i] = to.distance({pts[i].x(), pts[i].y(), pts[i].z()}, hint);
+                    }));
   return d;
 }
 

@@ -1,4 +1,5 @@
 #include "core/level_work.hpp"
+#include "core/thread_tag.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -94,10 +95,10 @@ void finish_space(const Preprocessed& pre, PreparedPart& pr, const AnalysisConte
   const std::vector<uint32_t>& cells = pr.space.cells;
   const std::vector<uint32_t>& pool = pr.input.pool;
   pr.input.positive.assign(pool.size(), Bits(pr.space.words(), 0));
-  tbb::parallel_for(size_t(0), pool.size(), [&](size_t k) {
-    for (uint32_t i = 0; i < cells.size(); ++i)
-      if (cx.cell_side(cells[i], pool[k]) > 0) set_bit(pr.input.positive[k], i);
-  });
+  tbb::parallel_for(size_t(0), pool.size(), with_thread_tag([&](size_t k) {
+                      for (uint32_t i = 0; i < cells.size(); ++i)
+                        if (cx.cell_side(cells[i], pool[k]) > 0) set_bit(pr.input.positive[k], i);
+                    }));
   pr.input.ctx = ctx;
 }
 
@@ -165,10 +166,10 @@ std::vector<PartAnalysis> analyze_parts(const CellSpace& space, const LevelSpace
     }
     todo.push_back(i);
   }
-  tbb::parallel_for(size_t(0), todo.size(), [&](size_t k) {
-    const size_t i = todo[k];
-    info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes);
-  });
+  tbb::parallel_for(size_t(0), todo.size(), with_thread_tag([&](size_t k) {
+                      const size_t i = todo[k];
+                      info[i] = analyze_part(space, ls.bits(work[i]), ctx, kNoNewPlanes);
+                    }));
   if (memo)
     for (size_t i : todo) memo->by_part_cells.emplace(std::move(keys[i]), info[i]);
   return info;

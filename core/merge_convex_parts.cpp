@@ -1,4 +1,5 @@
 #include "core/level_passes.hpp"
+#include "core/thread_tag.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -66,11 +67,11 @@ void merge_convex_neighbours(const Preprocessed& pre, std::vector<LevelPart>& wo
           todo.emplace_back(a, b);
     }
     std::vector<PartAnalysis> unions(todo.size());
-    tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
-      Bits u = info[todo[i].first].bits;
-      for (size_t w = 0; w < u.size(); ++w) u[w] |= info[todo[i].second].bits[w];
-      unions[i] = analyze_part(space, std::move(u), ctx, kNoNewPlanes);
-    });
+    tbb::parallel_for(size_t(0), todo.size(), with_thread_tag([&](size_t i) {
+                        Bits u = info[todo[i].first].bits;
+                        for (size_t w = 0; w < u.size(); ++w) u[w] |= info[todo[i].second].bits[w];
+                        unions[i] = analyze_part(space, std::move(u), ctx, kNoNewPlanes);
+                      }));
     for (size_t i = 0; i < todo.size(); ++i) {
       const auto [a, b] = todo[i];
       std::optional<std::pair<double, PartAnalysis>> r;

@@ -12,6 +12,7 @@
 #include <unordered_set>
 
 #include "core/hull.hpp"
+#include "core/thread_tag.hpp"
 
 namespace mc::level {
 
@@ -62,12 +63,13 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
     // neighbour order as one after the other would.
     const std::vector<std::pair<uint32_t, double>> options(shared.begin(), shared.end());
     std::vector<std::optional<double>> growths(options.size());  // none: the union pinches
-    tbb::parallel_for(size_t(0), options.size(), [&](size_t i) {
-      const uint32_t p = options[i].first;
-      std::vector<uint32_t> merged = parts[p].cells;
-      merged.insert(merged.end(), parts[victim].cells.begin(), parts[victim].cells.end());
-      if (!has_pinch_edge(cx, merged)) growths[i] = hull_of(merged) - hull_of(parts[p].cells) - vol[victim];
-    });
+    tbb::parallel_for(size_t(0), options.size(), with_thread_tag([&](size_t i) {
+                        const uint32_t p = options[i].first;
+                        std::vector<uint32_t> merged = parts[p].cells;
+                        merged.insert(merged.end(), parts[victim].cells.begin(), parts[victim].cells.end());
+                        if (!has_pinch_edge(cx, merged))
+                          growths[i] = hull_of(merged) - hull_of(parts[p].cells) - vol[victim];
+                      }));
     int target = -1;
     double best_growth = 0, best_area = 0;
     for (size_t i = 0; i < options.size(); ++i) {

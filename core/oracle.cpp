@@ -2,6 +2,7 @@
 #include "core/embree_device.hpp"
 #include "core/fast_sincos.hpp"
 #include "core/union_find.hpp"
+#include "core/thread_tag.hpp"
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -527,9 +528,10 @@ void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id,
 void InsideOracle::classify(const std::vector<Vec3>& pts, const std::vector<uint64_t>& ids,
                             std::vector<uint8_t>& out) const {
   out.assign(pts.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i], ids[i]) ? 1 : 0;
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256),
+                    with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i], ids[i]) ? 1 : 0;
+                    }));
 }
 
 }  // namespace mc
@@ -591,9 +593,10 @@ bool VerticalOracle::inside(const Vec3& p) const {
 
 void VerticalOracle::classify(const std::vector<Vec3>& pts, std::vector<uint8_t>& out) const {
   out.assign(pts.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i]) ? 1 : 0;
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 256),
+                    with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i]) ? 1 : 0;
+                    }));
 }
 
 double VerticalOracle::volume(int columns) const {
@@ -605,19 +608,22 @@ double VerticalOracle::volume(int columns) const {
   const int ny = std::max(1, static_cast<int>(std::ceil(wy / step)));
   const double dx = wx / nx, dy = wy / ny;
   std::vector<double> col(static_cast<size_t>(nx) * ny, 0.0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, col.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      // Column centres nudged off the grid so that they do not run along axis-aligned edges.
-      const double x = box_.lo.x + (static_cast<double>(i % nx) + 0.5 + 0.0123) * dx;
-      const double y = box_.lo.y + (static_cast<double>(i / nx) + 0.5 - 0.0171) * dy;
-      const std::vector<double> zs = crossings(x, y);
-      double len = 0;
-      size_t k = 0;
-      if (zs.size() % 2) len += std::max(0.0, zs[k++] - ground_z_);  // open bottom: from the ground level
-      for (; k + 1 < zs.size(); k += 2) len += zs[k + 1] - zs[k];
-      col[i] = len;
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, col.size(), 64),
+                    with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i) {
+                        // Column centres nudged off the grid so that they do not run along axis-aligned
+                        // edges.
+                        const double x = box_.lo.x + (static_cast<double>(i % nx) + 0.5 + 0.0123) * dx;
+                        const double y = box_.lo.y + (static_cast<double>(i / nx) + 0.5 - 0.0171) * dy;
+                        const std::vector<double> zs = crossings(x, y);
+                        double len = 0;
+                        size_t k = 0;
+                        if (zs.size() % 2)
+                          len += std::max(0.0, zs[k++] - ground_z_);  // open bottom: from the ground level
+                        for (; k + 1 < zs.size(); k += 2) len += zs[k + 1] - zs[k];
+                        col[i] = len;
+                      }
+                    }));
   double sum = 0;
   for (double v : col) sum += v;
   return sum * dx * dy;

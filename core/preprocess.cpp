@@ -4,6 +4,7 @@
 #include <numeric>
 #include <optional>
 #include <cmath>
+#include <exception>
 #include <stdexcept>
 
 #include <tbb/task_group.h>
@@ -20,6 +21,7 @@
 #include "core/surface.hpp"
 #include "core/surface_index.hpp"
 #include "core/up_axis.hpp"
+#include "core/thread_tag.hpp"
 
 namespace mc {
 
@@ -33,11 +35,12 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Joins a task group when the scope ends, also on a throw (its own exception is then dropped: the
-// one in flight is the error).
+// Joins a task group when the scope ends, also on a throw: then its tasks not yet started are
+// cancelled, and its own exception is dropped (the one in flight is the error).
 struct WaitOnExit {
   tbb::task_group& group;
   ~WaitOnExit() {
+    if (std::uncaught_exceptions() > 0) group.cancel();
     try {
       group.wait();
     } catch (...) {}
@@ -114,11 +117,11 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   tbb::task_group checking;
   const WaitOnExit join_checking{checking};  // (a throw below must not leave the task running)
   if (check_fast_path) {
-    checking.run([&] {
+    checking.run(with_thread_tag([&] {
       SolidTolerances tol;
       tol.snap = diag0 * 1e-9;  // the oracle's weld: its topology is the one checked
       check = check_solid(oracle_mesh, tol, false);
-    });
+    }));
   }
 
   // Planes.

@@ -1,4 +1,5 @@
 #include "core/search.hpp"
+#include "core/thread_tag.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -183,7 +184,7 @@ class Search {
           else pieces[i].push_back({kNew, analyze_part(*in_.space, std::move(comp), in_.ctx, lookup)});
         }
     };
-    tbb::parallel_for(size_t(0), todo.size(), body);
+    tbb::parallel_for(size_t(0), todo.size(), with_thread_tag(body));
     for (size_t i = 0; i < todo.size(); ++i) {
       std::vector<uint32_t> ids;
       // A cut that leaves a piece touching itself along a new edge gives no valid solid: reject

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <mutex>
 
+#include "core/thread_tag.hpp"
 #include "io/temp_registry.hpp"
 
 namespace mc::pipeline {
@@ -16,12 +17,15 @@ namespace mc::pipeline {
 namespace {
 
 constexpr int kSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
-constexpr size_t kMaxId = 1024, kMaxPath = 4096;
+constexpr size_t kMaxId = CrashGuard::Scope::kMaxId, kMaxPath = 4096;
 
 // Read by the handler: plain storage only (no allocation, no locks).
 char g_log[kMaxPath];  // empty = guard off
 struct sigaction g_previous[std::size(kSignals)];
-thread_local char t_id[kMaxId];  // the building this thread works on, or ""
+// The building a crashing thread works on is its thread tag (core/thread_tag.hpp): set by the
+// job's Scope and carried into every task the job's work hands to TBB, so a crash on a thread
+// that helps the job names it too.
+thread_local bool t_recorded = false;
 
 void write_all(int fd, const char* s, size_t n) {
   while (n > 0) {
@@ -34,12 +38,13 @@ void write_all(int fd, const char* s, size_t n) {
 
 void on_crash(int sig, siginfo_t* info, void* context) {
   mc::io::unlink_registered_temp_files();
-  if (g_log[0] && t_id[0]) {
+  const char* id = mc::thread_tag();
+  if (g_log[0] && id && id[0] && !t_recorded) {
     const int fd = ::open(g_log, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
     if (fd >= 0) {
       char line[kMaxId + 16];
-      size_t n = std::strlen(t_id);
-      std::memcpy(line, t_id, n);
+      size_t n = std::strlen(id);
+      std::memcpy(line, id, n);
       line[n++] = '\t';
       char digits[8];
       int d = 0;
@@ -49,7 +54,7 @@ void on_crash(int sig, siginfo_t* info, void* context) {
       write_all(fd, line, n);
       ::close(fd);
     }
-    t_id[0] = '\0';  // a second fault on this thread records nothing more
+    t_recorded = true;  // a second fault on this thread records nothing more
   }
   size_t i = 0;
   while (i + 1 < std::size(kSignals) && kSignals[i] != sig) ++i;
@@ -102,12 +107,13 @@ std::string CrashGuard::skip_reason(const std::string& id) const {
          "); written through unchanged. Delete that file to try it again";
 }
 
-CrashGuard::Scope::Scope(const std::string& id) {
-  const std::string r = recorded_form(id);
-  std::memcpy(t_id, r.data(), r.size());
-  t_id[r.size()] = '\0';
-}
+CrashGuard::Scope::Scope(const std::string& id) : id_(make_id(id)), tag_(id_.data()) {}
 
-CrashGuard::Scope::~Scope() { t_id[0] = '\0'; }
+std::array<char, CrashGuard::Scope::kMaxId> CrashGuard::Scope::make_id(const std::string& id) {
+  const std::string r = recorded_form(id);
+  std::array<char, kMaxId> out{};
+  std::memcpy(out.data(), r.data(), r.size());
+  return out;
+}
 
 }  // namespace mc::pipeline

@@ -1,7 +1,8 @@
 // Crash guard: a building that crashes the whole process (SIGSEGV, SIGBUS, SIGFPE, SIGILL,
 // SIGABRT: a bug in a geometry library, a failed assertion) is not lost on the next run.
 //
-// The signal handler, on the thread that was running the building, appends its id to the
+// The signal handler, on the thread that was running the building or one of its tasks (the
+// thread tag, core/thread_tag.hpp), appends its id to the
 // crash log (default OUTPUT.crashed, one "id<TAB>signal" line each), unlinks the atomic outputs'
 // temp files, and then lets the signal take its usual course (a handler installed before ours,
 // e.g. a sanitizer's, runs next; else the process dies by the signal). A later run with the same
@@ -9,8 +10,12 @@
 // reason, so the city completes. Deleting the log retries those buildings.
 // Not covered: a stack overflow (no alternate signal stack on TBB threads), SIGKILL (OOM killer).
 #pragma once
+#include <array>
+#include <cstddef>
 #include <set>
 #include <string>
+
+#include "core/thread_tag.hpp"
 
 namespace mc::pipeline {
 
@@ -27,13 +32,19 @@ class CrashGuard {
   std::string skip_reason(const std::string& id) const;
   size_t recorded() const { return crashed_.size(); }
 
-  // Marks the calling thread as working on `id` for as long as it lives.
+  // Marks the calling thread, and the tasks its work hands to TBB (core/thread_tag.hpp), as
+  // working on `id` for as long as it lives.
   class Scope {
    public:
+    static constexpr size_t kMaxId = 1024;  // recorded ids are cut to kMaxId - 1 bytes
     explicit Scope(const std::string& id);
-    ~Scope();
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;
+
+   private:
+    static std::array<char, kMaxId> make_id(const std::string& id);
+    const std::array<char, kMaxId> id_;  // read by the crash handler through the thread tag
+    const ThreadTagScope tag_;
   };
 
  private:

@@ -332,7 +332,13 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   if (pre.components.empty()) throw std::runtime_error("preprocessing produced no interior cells");
 
   t = Clock::now();
-  Decomposition dec = decompose_measuring_fidelity(pre, p.dec, deadline);
+  Decomposition dec;
+  try {
+    dec = decompose_measuring_fidelity(pre, p.dec, deadline);
+  } catch (...) {
+    if (pre.hausdorff >= 0) out.hausdorff = pre.hausdorff;  // measured even when the levels fail
+    throw;
+  }
   out.time.decompose = since(t);
   if (pre.hausdorff >= 0) out.hausdorff = pre.hausdorff;
   out.size.concave_edges = dec.concave_edges;

@@ -12,7 +12,10 @@
 #include <cmath>
 #include <cstring>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <future>
+#include <map>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -219,10 +222,21 @@ int main(int argc, char** argv) {
         mc::preprocess(mesh, params.pre, deadline, std::numeric_limits<double>::quiet_NaN(),
                        /*defer_fidelity=*/true);
     problems.insert(problems.end(), pre.problems.begin(), pre.problems.end());
-    // The singleton cell's surface is taken before the levels refine its cells, and written with
-    // the levels' files.
+    // The singleton cell's surface is taken before the levels refine its cells, and written on a
+    // thread of its own beside them (its file syncs wait on the disk, not on a core). It is
+    // written whatever the levels do; a write error is reported once they are done.
     const mc::PolygonMesh singleton = mc::singleton_mesh(pre);
-    const std::string singleton_path = out + "/" + stem + "_singleton.off";
+    std::future<void> singleton_written = std::async(
+        std::launch::async, [&] { mc::io::write_off(out + "/" + stem + "_singleton.off", singleton); });
+    // The cell's fidelity, measured beside the levels, is reported also when they fail.
+    auto report_fidelity = [&] {
+      report["preprocess"]["hausdorff"] = pre.hausdorff;
+      report["preprocess"]["hausdorff_input_to_cell"] = pre.hausdorff_in_to_cell;
+      report["preprocess"]["hausdorff_cell_to_input"] = pre.hausdorff_cell_to_in;
+      report["preprocess"]["mean_distance"] = pre.mean_distance;
+      report["preprocess"]["mean_distance_cell_to_input"] = pre.mean_distance_cell_to_in;
+      report["preprocess"]["mean_distance_symmetric"] = pre.mean_distance_symmetric;
+    };
     report["preprocess"] = {{"seconds", pre.seconds},
                             {"planes", pre.regions},
                             {"hole_planes", pre.hole_planes},
@@ -263,22 +277,34 @@ int main(int argc, char** argv) {
       report["status"] = "partial";
       report["reason"] = "carving stopped by the deadline or the cell limit";
     }
-    if (cmd == "preprocess") {  // concave edges of the singleton cell (no search)
-      mc::DecomposeParams none = params.dec;
-      none.levels.clear();
-      report["preprocess"]["concave_edges"] =
-          mc::decompose_measuring_fidelity(pre, none, deadline).concave_edges;
-      mc::io::write_off(singleton_path, singleton);
+    mc::DecomposeParams dec = params.dec;
+    if (cmd == "preprocess") dec.levels.clear();  // concave edges of the singleton cell (no search)
+    mc::Decomposition d;
+    try {
+      d = mc::decompose_measuring_fidelity(pre, dec, deadline);
+    } catch (...) {
+      report_fidelity();
+      throw;
     }
+    report_fidelity();
+    report["preprocess"]["concave_edges"] = d.concave_edges;
     if (cmd == "decompose") {
-      const mc::Decomposition d = mc::decompose_measuring_fidelity(pre, params.dec, deadline);
-      report["preprocess"]["concave_edges"] = d.concave_edges;
-      // Every file at once: each level's parts only read the complex, and the files' syncs overlap.
-      tbb::parallel_for(size_t(0), d.levels.size() + 1, [&](size_t i) {
-        if (i == d.levels.size()) mc::io::write_off(singleton_path, singleton);
-        else
-          write_level_off(out + "/" + stem + "_lod_" + lod_name(d.levels[i].lod) + ".off", pre, d.levels[i]);
+      // The level files at once (each level's parts only read the complex); two levels with one
+      // file name leave the later level's, as one after the other did. The first error in level
+      // order is the one reported.
+      std::map<std::string, size_t> last_of_path;
+      for (size_t i = 0; i < d.levels.size(); ++i)
+        last_of_path[out + "/" + stem + "_lod_" + lod_name(d.levels[i].lod) + ".off"] = i;
+      const std::vector<std::pair<std::string, size_t>> files(last_of_path.begin(), last_of_path.end());
+      std::vector<std::exception_ptr> errors(d.levels.size());
+      tbb::parallel_for(size_t(0), files.size(), [&](size_t k) {
+        const auto& [path, i] = files[k];
+        try {
+          write_level_off(path, pre, d.levels[i]);
+        } catch (...) { errors[i] = std::current_exception(); }
       });
+      for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
       json levels_json = json::array();
       for (const auto& level : d.levels) {
         json parts = json::array();
@@ -307,12 +333,7 @@ int main(int argc, char** argv) {
         report["reason"] = d.reason;
       }
     }
-    report["preprocess"]["hausdorff"] = pre.hausdorff;
-    report["preprocess"]["hausdorff_input_to_cell"] = pre.hausdorff_in_to_cell;
-    report["preprocess"]["hausdorff_cell_to_input"] = pre.hausdorff_cell_to_in;
-    report["preprocess"]["mean_distance"] = pre.mean_distance;
-    report["preprocess"]["mean_distance_cell_to_input"] = pre.mean_distance_cell_to_in;
-    report["preprocess"]["mean_distance_symmetric"] = pre.mean_distance_symmetric;
+    singleton_written.get();  // (its error, if any)
   } catch (const std::exception& e) {
     report["status"] = "failed";
     report["reason"] = e.what();

@@ -7,8 +7,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
+
+#include <tbb/parallel_for.h>
 
 #include "config/config.hpp"
+#include "core/thread_tag.hpp"
 #include "io/cityjson.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline_fixtures.hpp"
@@ -81,6 +85,42 @@ TEST(FaultTolerance, ABuildingThatThrowsFailsAloneWithItsReason) {
   EXPECT_EQ(r.output["CityObjects"][victim]["geometry"].size(), in["CityObjects"][victim]["geometry"].size());
   EXPECT_EQ(r.output["CityObjects"].size(),
             in["CityObjects"].size() + parts_of(r.output, "NL.IMBAG.Pand.0503100000028341"));
+}
+
+// A crash on a thread that is only helping a building (a task of its parallel work, run by
+// another worker) names that building too: the job's crash scope travels with its tasks
+// (core/thread_tag.hpp).
+TEST(FaultTolerance, ACrashInABuildingsTaskOnAnotherThreadNamesTheBuilding) {
+  MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
+  const fs::path dir = fs::path(MC_BINARY_DIR) / "test_tmp" / "fault_crash_task";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  Params p = mc::test::default_config().params;
+  p.dec.levels = {0.1};
+  p.threads = 2;
+  const std::string victim = "NL.IMBAG.Pand.0503100000031927";
+  RunOptions opt;
+  opt.input = input;
+  opt.output = (dir / "out.city.json").string();
+  opt.report = (dir / "report.json").string();
+  opt.crash_log = opt.output + ".crashed";
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        RunOptions crashing = opt;
+        crashing.before_job = [&](mc::io::Feature& f) {
+          if (f.id != victim) return;
+          const std::thread::id job_thread = std::this_thread::get_id();
+          tbb::parallel_for(0, 2000, 1, mc::with_thread_tag([&](int) {
+                              if (std::this_thread::get_id() != job_thread) std::abort();
+                              std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                            }));
+        };
+        run_city(crashing, p, RunConfig{});
+      },
+      ::testing::KilledBySignal(SIGABRT), "");
+  EXPECT_EQ(mc::test::slurp(opt.crash_log), victim + "\t" + std::to_string(SIGABRT) + "\n");
+  fs::remove_all(dir);
 }
 
 // A building that crashes the whole process (here the test hook aborts, as a failed assertion

@@ -59,3 +59,19 @@ TEST(MorphcutCli, DecomposeReachesConvexPartsAtTheFinestLevel) {
 }
 
 }  // namespace
+
+// Two levels with one file name (here the same level twice) are written once, with the later
+// level's parts, as writing them one after the other did; the run succeeds. The level files are
+// written in parallel, so two writers of one path would collide.
+TEST(MorphcutCli, TwoLevelsWithOneFileNameWriteItOnce) {
+  if (!fs::exists(kSample)) GTEST_SKIP() << "shared samples not found at " << kSample;
+  const fs::path out = fs::path(MC_BINARY_DIR) / "test_tmp" / "cli_dup";
+  const auto r = run("decompose " + kSample.string() + " --levels 0.01,0.01,0.001 --threads 2", out);
+  EXPECT_EQ(r["status"], "ok") << r["reason"];
+  ASSERT_EQ(r["levels"].size(), 3u);
+  EXPECT_TRUE(fs::exists(out / "00253_lod_0.010000.off"));
+  EXPECT_TRUE(fs::exists(out / "00253_lod_0.001000.off"));
+  EXPECT_TRUE(fs::exists(out / "00253_singleton.off"));
+  for (const auto& e : fs::directory_iterator(out))  // no temp file left behind
+    EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos) << e.path();
+}
