@@ -1,6 +1,9 @@
 #include "core/open_input.hpp"
 
 #include "core/solid_validation.hpp"  // triangulate_polygon
+#include "core/thread_tag.hpp"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,30 +44,59 @@ OpenInput analyse_open_input(const PolygonMesh& mesh, double dist) {
     if (n == 1) edges.emplace_back(mesh.vertices[e.first], mesh.vertices[e.second]);
     if (n > 2) ++out.nonmanifold_edges;
   }
-  // Coverage by other boundary edges, bucketed by a coarse grid on the edges' midpoints' boxes.
+  // Coverage by other boundary edges: an edge is covered at a sample point by a nearly parallel
+  // boundary edge within δ. Each edge's candidates are the parallel ones whose boxes come within
+  // δ of its own (a box farther than δ on some axis holds no point within δ), found once for its
+  // four samples; the edges are tested in parallel and summed in order.
+  struct Edge {
+    Vec3 e;
+    double length;
+    BBox box;
+  };
+  std::vector<Edge> info(edges.size());
+  for (size_t j = 0; j < edges.size(); ++j) {
+    info[j].e = edges[j].second - edges[j].first;
+    info[j].length = norm(info[j].e);
+    info[j].box.add(edges[j].first);
+    info[j].box.add(edges[j].second);
+  }
+  // A margin for the rounding of the sample points (coordinates may be georeferenced): the exact
+  // test below decides, the filter only has to keep every edge that might pass it.
+  double magnitude = 0;
+  for (const Vec3& v : mesh.vertices)
+    magnitude = std::max({magnitude, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  const double reach = dist * (1 + 1e-6) + 1e-9 * magnitude;
+  auto far_apart = [&](const BBox& p, const BBox& q) {
+    return p.lo.x - q.hi.x > reach || q.lo.x - p.hi.x > reach || p.lo.y - q.hi.y > reach ||
+           q.lo.y - p.hi.y > reach || p.lo.z - q.hi.z > reach || q.lo.z - p.hi.z > reach;
+  };
+  std::vector<int> uncovered(edges.size(), 0);
+  tbb::parallel_for(
+      size_t(0), edges.size(), with_thread_tag([&](size_t i) {
+        const auto& [a, b] = edges[i];
+        const double len = info[i].length;
+        if (len <= 0) return;
+        const Vec3 d = (b - a) * (1.0 / len);
+        std::vector<uint32_t> near;
+        for (size_t j = 0; j < edges.size(); ++j) {
+          if (j == i || info[j].length <= 0 || std::abs(dot(info[j].e, d)) < 0.99 * info[j].length) continue;
+          if (!far_apart(info[i].box, info[j].box)) near.push_back(static_cast<uint32_t>(j));
+        }
+        for (int s = 0; s < 4; ++s) {
+          const Vec3 p = a + (b - a) * ((2 * s + 1) / 8.0);
+          bool covered = false;
+          for (size_t k = 0; k < near.size() && !covered; ++k)
+            covered = point_segment_distance(p, edges[near[k]].first, edges[near[k]].second) <= dist;
+          uncovered[i] += !covered;
+        }
+      }));
   for (size_t i = 0; i < edges.size(); ++i) {
     const auto& [a, b] = edges[i];
-    const double len = norm(b - a);
+    const double len = info[i].length;
     out.boundary_length += len;
-    if (len <= 0) continue;
-    const Vec3 d = (b - a) * (1.0 / len);
-    int uncovered = 0;
-    for (int s = 0; s < 4; ++s) {
-      const Vec3 p = a + (b - a) * ((2 * s + 1) / 8.0);
-      bool covered = false;
-      for (size_t j = 0; j < edges.size() && !covered; ++j) {
-        if (j == i) continue;
-        const Vec3 e = edges[j].second - edges[j].first;
-        const double el = norm(e);
-        if (el <= 0 || std::abs(dot(e, d)) < 0.99 * el) continue;
-        covered = point_segment_distance(p, edges[j].first, edges[j].second) <= dist;
-      }
-      uncovered += !covered;
-    }
-    if (uncovered) {
-      if (std::max(a.z, b.z) > lowest + dist) out.uncovered_length += len * uncovered / 4.0;
-      out.uncovered_edges.push_back(edges[i]);
-    }
+    if (len <= 0 || !uncovered[i]) continue;
+    if (std::max(a.z, b.z) > lowest + dist) out.uncovered_length += len * uncovered[i] / 4.0;
+    out.uncovered_edges.push_back(edges[i]);
   }
   // Ground: semantic, else a downward horizontal face at the lowest level.
   bool& semantics = out.semantics;

@@ -413,3 +413,85 @@ TEST(OpenModels, OpenBottomsAreHolesWithARoofAboveAndNothingBelow) {
 
 }  // namespace
 }  // namespace mc::test
+
+namespace mc::test {
+namespace {
+
+// The open boundary's coverage test by brute force, every edge against every other (the form the
+// candidate filter of analyse_open_input replaced): the same uncovered length and edges on every
+// Building of the open variants and of the 3D BAG tile, open or not.
+TEST(OpenModels, BoundaryCoverageEqualsTheBruteForceTest) {
+  auto brute = [](const PolygonMesh& mesh, double dist, double& uncovered_length, size_t& uncovered_edges) {
+    double lowest = 1e300;
+    for (const Vec3& v : mesh.vertices) lowest = std::min(lowest, v.z);
+    std::map<std::pair<uint32_t, uint32_t>, int> uses;
+    for (const Polygon& f : mesh.faces)
+      for (const auto& r : f.rings)
+        for (size_t i = 0; i < r.size(); ++i) {
+          const uint32_t a = r[i], b = r[(i + 1) % r.size()];
+          if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
+        }
+    std::vector<std::pair<Vec3, Vec3>> edges;
+    for (const auto& [e, n] : uses)
+      if (n == 1) edges.emplace_back(mesh.vertices[e.first], mesh.vertices[e.second]);
+    auto seg = [](const Vec3& p, const Vec3& a, const Vec3& b) {
+      const Vec3 ab = b - a;
+      const double l2 = dot(ab, ab);
+      const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
+      return norm(p - (a + ab * t));
+    };
+    uncovered_length = 0;
+    uncovered_edges = 0;
+    for (size_t i = 0; i < edges.size(); ++i) {
+      const auto& [a, b] = edges[i];
+      const double len = norm(b - a);
+      if (len <= 0) continue;
+      const Vec3 d = (b - a) * (1.0 / len);
+      int uncovered = 0;
+      for (int s = 0; s < 4; ++s) {
+        const Vec3 p = a + (b - a) * ((2 * s + 1) / 8.0);
+        bool covered = false;
+        for (size_t j = 0; j < edges.size() && !covered; ++j) {
+          if (j == i) continue;
+          const Vec3 e = edges[j].second - edges[j].first;
+          const double el = norm(e);
+          if (el <= 0 || std::abs(dot(e, d)) < 0.99 * el) continue;
+          covered = seg(p, edges[j].first, edges[j].second) <= dist;
+        }
+        uncovered += !covered;
+      }
+      if (uncovered) {
+        if (std::max(a.z, b.z) > lowest + dist) uncovered_length += len * uncovered / 4.0;
+        ++uncovered_edges;
+      }
+    }
+  };
+  size_t buildings = 0, open = 0;
+  for (const char* rel :
+       {"datasets/open_models/terraced_row.city.json", "datasets/open_models/gable_roof_only.city.json",
+        "datasets/open_models/l_shape_roof_only.city.json",
+        "datasets/open_models/tower_inclined_prisms.city.json", "datasets/3dbag/3dbag_5910.city.json"}) {
+    io::CityJsonReader r(source(rel));
+    io::Feature f;
+    while (r.next(f)) {
+      if (!io::is_building(f)) continue;
+      const io::BuildingInput b = io::extract_building(f, r.header());
+      if (b.mesh.faces.empty()) continue;
+      for (double dist : {0.05, 0.5}) {
+        const OpenInput o = analyse_open_input(b.mesh, dist);
+        double length = 0;
+        size_t count = 0;
+        brute(b.mesh, dist, length, count);
+        EXPECT_EQ(o.uncovered_length, length) << rel << " " << f.id << " δ " << dist;
+        EXPECT_EQ(o.uncovered_edges.size(), count) << rel << " " << f.id << " δ " << dist;
+        open += count > 0;
+      }
+      ++buildings;
+    }
+  }
+  EXPECT_GT(buildings, 400u);
+  EXPECT_GT(open, 10u);  // the comparison saw uncovered boundaries, not only closed shells
+}
+
+}  // namespace
+}  // namespace mc::test
