@@ -7,6 +7,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
 #include "core/carve.hpp"
@@ -98,8 +99,13 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   // the other stages (δ/10, at most 1e-6 of the diagonal) can join float-neighbour vertices of
   // stacked storeys into shells that no longer split into closed patches (sample18 lost two
   // storeys to plain parity).
-  PolygonMesh oracle_mesh = clean_soup(mesh, diag0 * 1e-9, nullptr);
-  mesh = clean_soup(mesh, std::min(out.dist * 0.1, diag0 * 1e-6), &out.problems);
+  // (the two cleanings read the same mesh and are independent: one task each)
+  PolygonMesh oracle_mesh, cleaned;
+  tbb::parallel_invoke(with_thread_tag([&] { oracle_mesh = clean_soup(mesh, diag0 * 1e-9, nullptr); }),
+                       with_thread_tag([&] {
+                         cleaned = clean_soup(mesh, std::min(out.dist * 0.1, diag0 * 1e-6), &out.problems);
+                       }));
+  mesh = std::move(cleaned);
   if (mesh.faces.empty()) throw std::runtime_error("degenerate geometry: no valid face after cleaning");
   out.offset = bbox_center(mesh);
   translate(mesh, -out.offset);
