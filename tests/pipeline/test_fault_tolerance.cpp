@@ -87,23 +87,31 @@ TEST(FaultTolerance, ABuildingThatThrowsFailsAloneWithItsReason) {
             in["CityObjects"].size() + parts_of(r.output, "NL.IMBAG.Pand.0503100000028341"));
 }
 
+// The crash tests' run: a fresh directory (not a TempDir: the death test's child is a fresh
+// process, threadsafe style, and must write where this one looks; each test its own name), the
+// output, report and crash log in it.
+RunOptions crash_run(const std::string& input, const fs::path& dir) {
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  RunOptions opt;
+  opt.input = input;
+  opt.output = (dir / "out.city.json").string();
+  opt.report = (dir / "report.json").string();
+  opt.crash_log = opt.output + ".crashed";
+  return opt;
+}
+
 // A crash on a thread that is only helping a building (a task of its parallel work, run by
 // another worker) names that building too: the job's crash scope travels with its tasks
 // (core/thread_tag.hpp).
 TEST(FaultTolerance, ACrashInABuildingsTaskOnAnotherThreadNamesTheBuilding) {
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
   const fs::path dir = fs::path(MC_BINARY_DIR) / "test_tmp" / "fault_crash_task";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const RunOptions opt = crash_run(input, dir);
   Params p = mc::test::default_config().params;
   p.dec.levels = {0.1};
   p.threads = 2;
   const std::string victim = "NL.IMBAG.Pand.0503100000031927";
-  RunOptions opt;
-  opt.input = input;
-  opt.output = (dir / "out.city.json").string();
-  opt.report = (dir / "report.json").string();
-  opt.crash_log = opt.output + ".crashed";
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_EXIT(
       {
@@ -129,19 +137,11 @@ TEST(FaultTolerance, ACrashInABuildingsTaskOnAnotherThreadNamesTheBuilding) {
 // "failed" with the reason, does the others, and the city completes.
 TEST(FaultTolerance, ABuildingThatCrashesTheProcessIsSkippedByTheNextRun) {
   MC_REQUIRE_DATA(input, "cjseq/3dbag_b2.city.json");
-  // Not a TempDir: the death test's child is a fresh process (threadsafe style) and must write
-  // where this one looks. Only this test uses the name.
   const fs::path dir = fs::path(MC_BINARY_DIR) / "test_tmp" / "fault_crash";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const RunOptions opt = crash_run(input, dir);
   Params p = mc::test::default_config().params;
   p.dec.levels = {0.1, 0.01};
   const std::string victim = "NL.IMBAG.Pand.0503100000031927";
-  RunOptions opt;
-  opt.input = input;
-  opt.output = (dir / "out.city.json").string();
-  opt.report = (dir / "report.json").string();
-  opt.crash_log = opt.output + ".crashed";
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_EXIT(
       {
