@@ -112,6 +112,9 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   translate(oracle_mesh, -out.offset);
   for (const Vec3& v : mesh.vertices) out.box.add(v);
   out.labels = mesh.semantic_labels;
+  // Open inputs (missing walls, grounds, roofs, §6.4), known before the planes: the vertical
+  // planes of their open boundary come after the hole planes, so that a missing wall is closed
+  // where its roof or ground ends.
   const OpenInput open = analyse_open_input(mesh, out.dist);
   out.open_input = open.open(out.cell_size);
 
@@ -172,8 +175,6 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
     missing_face_box.push_back(h.bbox);
     ++out.hole_planes;
   }
-  // Open inputs (missing walls, grounds, roofs): the vertical planes of their open boundary,
-  // after the hole planes, so that a missing wall is closed where its roof or ground ends.
   // The ground level of the vertical vote: the input's lowest height, or for a model with neither
   // a ground nor walls (roofs only) the terrain height the file gives, when it is lower (§6.4).
   double ground_z = out.box.lo.z;
