@@ -26,7 +26,8 @@ inline const SinCosTable& sincos_table() {
 }  // namespace detail
 
 // The Taylor coefficients as the doubles nearest to ±1/n!, written out: CGAL's -frounding-math
-// keeps the compiler from folding 1.0 / 6 and the like, which were six divisions per call.
+// keeps the compiler from folding 1.0 / 6 and the like, so written as quotients they cost six
+// divisions per call.
 namespace detail {
 constexpr double kInv3f = -0x1.5555555555555p-3;   // -1/3!
 constexpr double kInv5f = 0x1.1111111111111p-7;    // 1/5!

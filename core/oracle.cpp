@@ -528,8 +528,8 @@ void InsideOracle::classify(const std::vector<Vec3>& pts, uint64_t first_id,
 void InsideOracle::classify(const std::vector<Vec3>& pts, const std::vector<uint64_t>& ids,
                             std::vector<uint8_t>& out) const {
   out.assign(pts.size(), 0);
-  // Chunks of at least 16 points: a vote is 100–10,000 points, and with chunks of 256 one thread
-  // idled while the other finished a vote's last chunks (docs/benchmarks.md, "At f734f37").
+  // Chunks of at least 16 points: a vote is 100–10,000 points, and coarser chunks leave one
+  // thread idle while the other finishes a vote's last ones (docs/algorithm.md §6.1).
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pts.size(), 16),
                     with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
                       for (size_t i = r.begin(); i != r.end(); ++i) out[i] = inside(pts[i], ids[i]) ? 1 : 0;
