@@ -15,6 +15,7 @@
 #include "io/citygml_crs.hpp"
 #include "io/citygml_xml.hpp"
 #include "io/cityjson_common.hpp"
+#include "io/crs.hpp"
 
 namespace mc::io {
 
@@ -195,6 +196,7 @@ struct CityGmlReader::Impl {
     if (!metadata.empty()) root["metadata"] = std::move(metadata);
     header.version = "2.0";
     header.crs = parse_crs(root);
+    header.coords = coordinate_system(header.crs, /*axis_order_of_crs=*/true, &header.coords_note);
     header.root = std::move(root);
     // Buildings converted before the header existed are checked against it now.
     if (pending && first_srs && !first_srs->empty() && !reference.empty() &&

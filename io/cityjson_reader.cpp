@@ -4,6 +4,7 @@
 #include <set>
 
 #include "io/cityjson_common.hpp"
+#include "io/crs.hpp"
 #include "io/cityjson_reader_impl.hpp"
 
 namespace mc::io {
@@ -21,6 +22,7 @@ const Header& CityJsonReader::header() const { return impl_->header; }
 bool CityJsonReader::next(Feature& out) { return impl_->next(out); }
 const std::vector<std::string>& CityJsonReader::problems() const { return impl_->problems; }
 bool CityJsonReader::is_sequence() const { return impl_->sequence(); }
+std::optional<size_t> CityJsonReader::feature_count() const { return impl_->feature_count(); }
 
 Header make_header(nlohmann::json root, const std::string& source) {
   auto type = root.find("type");
@@ -33,6 +35,7 @@ Header make_header(nlohmann::json root, const std::string& source) {
   Header h;
   h.version = root["version"].get<std::string>();
   h.crs = parse_crs(root);
+  h.coords = coordinate_system(h.crs, /*axis_order_of_crs=*/false, &h.coords_note);
   h.root = std::move(root);
   return h;
 }

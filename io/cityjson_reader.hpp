@@ -2,6 +2,7 @@
 // Feature (a top-level CityObject with its descendants) at a time.
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ class CityJsonReader {
   // JSON objects, unreadable CityJSONSeq lines (skipped, the rest of the file is still read).
   const std::vector<std::string>& problems() const;
   bool is_sequence() const;
+  // Features in the file, known after the document's first pass (nullopt for CityJSONSeq).
+  std::optional<size_t> feature_count() const;
 
   struct Impl;
 

@@ -41,6 +41,7 @@ class DocumentReader : public CityJsonReader::Impl {
   ~DocumentReader() override { ::close(fd_); }
 
   bool sequence() const override { return false; }
+  std::optional<size_t> feature_count() const override { return group_start_.size() - 1; }
 
   bool next(Feature& out) override {
     if (next_group_ >= group_start_.size() - 1) return false;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "io/cityjson_reader.hpp"
 
@@ -12,6 +13,7 @@ struct CityJsonReader::Impl {
   virtual ~Impl() = default;
   virtual bool next(Feature& out) = 0;
   virtual bool sequence() const = 0;
+  virtual std::optional<size_t> feature_count() const { return std::nullopt; }
   Header header;
   std::vector<std::string> problems;
 };

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/vec3.hpp"
+#include "core/working_frame.hpp"
 
 namespace mc::io {
 
@@ -28,6 +29,9 @@ struct Header {
   // extensions, appearance, geometry-templates, extra root properties, ...).
   nlohmann::json root = nlohmann::json::object();
   std::string crs;  // e.g. "EPSG:7415" from metadata.referenceSystem; empty if none
+  // What the coordinates are (io/crs.hpp: coordinate_system): metres unless the CRS says otherwise.
+  mc::CoordinateSystem coords;
+  std::string coords_note;  // why the coordinates are assumed metric although a CRS is given
 };
 
 }  // namespace mc::io

@@ -9,12 +9,22 @@
 #include <string>
 #include <utility>
 
+#include "core/working_frame.hpp"
+
 namespace mc::io {
 
 // "EPSG:28992" for the OGC spellings CityJSON uses ("https://www.opengis.net/def/crs/EPSG/0/
 // 28992", "http://…", "urn:ogc:def:crs:EPSG::28992", "urn:ogc:def:crs:EPSG:9.8:28992", any
 // case of "epsg:"); anything else is returned unchanged (PROJ strings, WKT, …).
 std::string normalize_crs(const std::string& crs);
+
+// What a CRS's coordinates are (core/working_frame.hpp), from PROJ's definition of it: geographic
+// (degrees; any geographic 2D or 3D CRS, or a compound one with a geographic horizontal part),
+// geocentric, projected in metres, or in another linear unit (the unit's metres per unit). An
+// empty CRS is metric; one PROJ does not know is metric too, and `note` says why it is assumed.
+// `axis_order_of_crs`: geographic coordinates are in the CRS's own axis order (GML); otherwise
+// longitude first (CityJSON, GeoJSON).
+CoordinateSystem coordinate_system(const std::string& crs, bool axis_order_of_crs, std::string* note);
 
 class CrsTransformer {
  public:

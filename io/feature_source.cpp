@@ -18,6 +18,7 @@ class CityJsonSource : public FeatureSource {
   bool next(Feature& out) override { return reader_.next(out); }
   const std::vector<std::string>& problems() const override { return reader_.problems(); }
   std::string format() const override { return reader_.is_sequence() ? "CityJSONSeq" : "CityJSON"; }
+  std::optional<size_t> feature_count() const override { return reader_.feature_count(); }
 
  private:
   CityJsonReader reader_;

@@ -167,6 +167,8 @@ BuildingCache::BuildingCache(std::string dir, const mc::io::Header& h, const Par
   json header_facts = {{"version", h.version}};
   for (const char* k : {"transform", "geometry-templates"})
     if (h.root.contains(k)) header_facts[k] = h.root[k];
+  // Degrees or feet are decomposed in another frame than the same numbers in metres.
+  if (!h.coords.metric()) header_facts["coordinates"] = h.coords.describe();
   context_ = "morphcut-city cache " + std::to_string(kFormat) + "\n" MC_VERSION "\n" +
              key_config(p, rc).dump() + "\n" + header_facts.dump() + "\n";
   transform_ = mc::io::parse_transform(h.root, "header");

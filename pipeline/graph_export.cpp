@@ -62,8 +62,9 @@ std::vector<mc::io::GpkgColumn> gpkg_columns(const std::vector<double>& threshol
 }  // namespace
 
 MassingGpkgWriter::MassingGpkgWriter(const std::string& path, const std::string& crs,
-                                     std::vector<double> thresholds)
+                                     std::vector<double> thresholds, int coordinate_decimals)
     : thresholds_(std::move(thresholds)),
+      decimals_(coordinate_decimals),
       columns_(gpkg_columns(thresholds_)),
       gpkg_(std::make_unique<mc::io::GpkgWriter>(path, crs, columns_)) {}
 
@@ -71,7 +72,7 @@ MassingGpkgWriter::~MassingGpkgWriter() = default;
 
 void MassingGpkgWriter::add(const BuildingOutcome& b) {
   std::vector<mc::io::GpkgValue> values;
-  const std::vector<SummaryCell> row = summary_row(b, thresholds_);
+  const std::vector<SummaryCell> row = summary_row(b, thresholds_, decimals_);
   for (size_t i = 0; i < row.size() && i < columns_.size(); ++i) {
     const SummaryCell& c = row[i];
     mc::io::GpkgValue v;

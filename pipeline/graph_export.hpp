@@ -34,13 +34,15 @@ class GraphWriter {
 class MassingGpkgWriter {
  public:
   // `crs` from the input header; `thresholds`: the written levels (the CSV's parts_<t> columns).
-  MassingGpkgWriter(const std::string& path, const std::string& crs, std::vector<double> thresholds);
+  MassingGpkgWriter(const std::string& path, const std::string& crs, std::vector<double> thresholds,
+                    int coordinate_decimals = 3);
   ~MassingGpkgWriter();
   void add(const BuildingOutcome& b);
   void commit();
 
  private:
   std::vector<double> thresholds_;
+  int decimals_ = 3;
   std::vector<mc::io::GpkgColumn> columns_;
   std::unique_ptr<mc::io::GpkgWriter> gpkg_;
 };

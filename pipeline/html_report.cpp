@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -275,6 +276,9 @@ struct Page {
   std::unordered_map<std::string, size_t> by_id;
   std::vector<std::string> tiles;
   std::vector<std::string> warnings;
+  // Degrees (or feet) are drawn in metres: one metric frame for the whole page, set by the first
+  // building read (core/working_frame.hpp; over a city the scale error stays below 1e-6).
+  std::optional<WorkingFrame> frame;
 
   Building& add(const std::string& id) {
     by_id.emplace(id, buildings.size());
@@ -411,6 +415,10 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
       break;
     }
     if (!mc::io::is_building(f)) continue;
+    if (!header.coords.metric()) {
+      if (!page.frame) page.frame.emplace(header.coords, f.vertices);
+      page.frame->to_metric(f.vertices);
+    }
     auto found = page.by_id.find(f.id);
     Building* bp;
     if (found == page.by_id.end()) {

@@ -285,7 +285,7 @@ std::string deadline_reason(const Params& p, const char* where) {
 
 // The decomposing part of the job; throws on failure (the caller turns that into "failed").
 void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, const mc::io::Header& h,
-                        const Params& p, const RunConfig& rc) {
+                        const mc::WorkingFrame& frame, const Params& p, const RunConfig& rc) {
   const auto start = Clock::now();
   const auto deadline =
       p.timeout_s > 0
@@ -295,7 +295,8 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   Preprocessed pre;
   try {
     // (terrain: pipeline/terrain.hpp; the fidelity measure runs beside the levels)
-    pre = preprocess(in.mesh, p.pre, deadline, terrain_height(out.feature), /*defer_fidelity=*/true);
+    const double terrain = terrain_height(out.feature) * h.coords.vertical_unit;  // metres
+    pre = preprocess(in.mesh, p.pre, deadline, terrain, /*defer_fidelity=*/true);
   } catch (const std::exception& e) {
     // Carving cut short by the deadline finds no inside cell: the deadline is the reason.
     if (Clock::now() >= deadline)
@@ -347,7 +348,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   const mc::io::Transform transform = mc::io::parse_transform(h.root, "header");
   const std::string lod = in.lod.empty() ? std::string("2") : in.lod;
   std::vector<Vec3> new_vertices;
-  VertexPool pool(new_vertices, transform);
+  VertexPool pool(new_vertices, transform, frame);
   std::vector<StagedPart> staged;
   std::vector<PolygonMesh> first_level_meshes;
   const std::vector<PartResult> singleton = singleton_parts(pre);
@@ -446,9 +447,10 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   if (hull > 0) out.measures.convexity = std::min(1.0, volume / hull);
   const VolumeCentroid vc = volume_centroid(first_level_meshes);
   if (vc.volume > 0) {
-    out.measures.centroid = vc.centroid;
+    out.measures.centroid = frame.to_file(vc.centroid);
     out.measures.centroid_method = "solid";
   }
+  to_file(out.massing, frame);  // the footprints' coordinates, for the GeoPackage
 
   // Commit: nothing below throws on valid JSON objects.
   for (const auto& s : staged)
@@ -545,6 +547,13 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
     strip_previous_parts(out.feature);
     auto t = Clock::now();
     mc::io::BuildingInput in = mc::io::extract_building(out.feature, h, rc.lod);
+    // Metres from here on, whatever the file's CRS (docs/algorithm.md §2.1).
+    const mc::WorkingFrame frame(h.coords, in.mesh.vertices);
+    if (frame.swapped())
+      in.problems.push_back(
+          "latitude and longitude are read in the other axis order: the declared order puts "
+          "latitudes out of range");
+    frame.to_metric(in.mesh);
     out.time.extract = since(t);
     out.lod = in.lod;
     add_problems(out.problems, in.problems);
@@ -567,10 +576,10 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
       out.measures.footprint_area = fp.area;
       out.measures.footprint_method = fp.method;
       if (auto c = bbox_centre(in.mesh)) {
-        out.measures.centroid = *c;
+        out.measures.centroid = frame.to_file(*c);
         out.measures.centroid_method = "bbox";
       }
-      decompose_building(out, in, h, p, rc);
+      decompose_building(out, in, h, frame, p, rc);
     }
   } catch (const std::exception& e) {
     out.status = "failed";

@@ -430,6 +430,21 @@ void finish_massing(BuildingMassing& m, const MassingParams& p) {
       f.courtyards += std::abs(ring_signed_area(poly[r])) >= p.courtyard_min_area;
 }
 
+void to_file(BuildingMassing& m, const WorkingFrame& frame) {
+  if (frame.identity()) return;
+  auto map = [&](mc::io::MultiPolygon2& mp) {
+    for (auto& poly : mp)
+      for (auto& ring : poly)
+        for (auto& p : ring) {
+          const Vec3 f = frame.to_file({p[0], p[1], 0});
+          p = {f.x, f.y};
+        }
+  };
+  map(m.footprint);
+  for (auto& L : m.levels)
+    for (auto& pm : L.parts) map(pm.footprint);
+}
+
 void add_part_attributes(json& a, const LevelMassing& L, size_t j, const std::string& building) {
   const PartMassing& pm = L.parts[j];
   a["morphcut_role"] = pm.role;

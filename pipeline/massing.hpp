@@ -11,6 +11,7 @@
 
 #include "core/params.hpp"
 #include "core/polygon_mesh.hpp"
+#include "core/working_frame.hpp"
 #include "io/gpkg_writer.hpp"
 
 namespace mc {
@@ -64,6 +65,10 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
 
 // The building features and footprint from the written level nearest (in log) to p.level.
 void finish_massing(BuildingMassing& m, const MassingParams& p);
+
+// The footprints' coordinates from the building's metric working frame to the file's (for the
+// GeoPackage); every area and length stays as measured, in metres.
+void to_file(BuildingMassing& m, const WorkingFrame& frame);
 
 // The morphcut_* part attributes of part j (ids of neighbours: <building>-mc<index>-<k>).
 void add_part_attributes(nlohmann::json& attributes, const LevelMassing& level, size_t j,

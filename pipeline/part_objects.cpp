@@ -15,7 +15,8 @@ namespace mc::pipeline {
 
 using nlohmann::json;
 
-int64_t VertexPool::add(const Vec3& v) {
+int64_t VertexPool::add(const Vec3& metric) {
+  const Vec3 v = frame_.to_file(metric);
   // Grid coordinates: the integers the writer will emit (or the exact doubles without transform).
   const double s[3] = {t_.scale.x, t_.scale.y, t_.scale.z},
                o[3] = {t_.translate.x, t_.translate.y, t_.translate.z};
@@ -51,7 +52,10 @@ int64_t VertexPool::add(const Vec3& v) {
     }
   }
   auto [it, fresh] = index_.try_emplace({q[0], q[1], q[2]}, static_cast<int64_t>(out_.size()));
-  if (fresh) out_.push_back(snapped);
+  if (fresh) {
+    out_.push_back(snapped);
+    if (!frame_.identity()) metric_.push_back(frame_.to_metric(snapped));
+  }
   return it->second;
 }
 
@@ -59,6 +63,7 @@ void VertexPool::rollback(size_t mark) {
   for (auto it = index_.begin(); it != index_.end();)
     it = it->second >= static_cast<int64_t>(mark) ? index_.erase(it) : std::next(it);
   out_.resize(std::min(out_.size(), mark));
+  if (!frame_.identity()) metric_.resize(out_.size());
 }
 
 EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const std::string& version,

@@ -14,16 +14,25 @@
 #include <nlohmann/json.hpp>
 
 #include "core/polygon_mesh.hpp"
+#include "core/working_frame.hpp"
 #include "io/cityjson_common.hpp"
 #include "pipeline/solid_check.hpp"
 
 namespace mc::pipeline {
 
-// Appends snapped, deduplicated vertices to a feature's vertex list.
+// Appends snapped, deduplicated vertices to a feature's vertex list. Vertices come in the
+// building's metric working frame (core/working_frame.hpp); each is mapped to the file's
+// coordinates, snapped to the file's grid there, and kept in both forms: the file's for the
+// output, the metric image of the snapped point for every check (val3dity's tolerances are
+// metres). For a metric file both are the same vector.
 class VertexPool {
  public:
-  VertexPool(std::vector<Vec3>& out, const mc::io::Transform& t) : out_(out), t_(t) {}
-  int64_t add(const Vec3& v);
+  VertexPool(std::vector<Vec3>& out, const mc::io::Transform& t, const WorkingFrame& frame = {})
+      : out_(out), t_(t), frame_(frame) {
+    if (!frame_.identity())
+      for (const Vec3& v : out_) metric_.push_back(frame_.to_metric(v));
+  }
+  int64_t add(const Vec3& metric);
   // Undo every add() since mark() (a level that turned out invalid leaves no vertices behind).
   size_t mark() const { return out_.size(); }
   void rollback(size_t mark);
@@ -31,11 +40,14 @@ class VertexPool {
   // added since `mark` is that vertex (0 = exact grid duplicates only). Needs a transform.
   void cluster(int steps, size_t mark) { cluster_ = steps, cluster_from_ = mark; }
   bool can_cluster() const { return t_.present; }
-  const std::vector<Vec3>& vertices() const { return out_; }
+  // The snapped vertices in the metric frame (what the checks read).
+  const std::vector<Vec3>& vertices() const { return frame_.identity() ? out_ : metric_; }
 
  private:
   std::vector<Vec3>& out_;
+  std::vector<Vec3> metric_;  // out_ in the working frame, unless the frame is the identity
   mc::io::Transform t_;
+  WorkingFrame frame_;
   std::map<std::tuple<int64_t, int64_t, int64_t>, int64_t> index_;
   int cluster_ = 0;
   size_t cluster_from_ = 0;

@@ -29,7 +29,9 @@ struct RunOptions {
   std::string gpkg;         // GeoPackage of building and part footprints; empty = none
   std::string config_file;  // recorded in the report (empty = defaults)
   std::string cache_dir;    // per-building result cache (pipeline/cache.hpp); empty = none
-  bool progress = false;    // draw the progress bar on stderr
+  // Reproject the input to this CRS as it is read (io/reproject.hpp); empty = keep the input's.
+  std::string output_crs;
+  bool progress = false;  // draw the progress bar on stderr
   // Install SIGINT/SIGTERM handling (the CLI does). A first signal stops reading and writing,
   // leaves no output file, and the run returns with `interrupted` set; in-flight jobs get a
   // grace period, then the process exits with 128 + signal.

@@ -2,6 +2,7 @@
 //   morphcut-city validate FILE ...        (pipeline/validate_cli.cpp)
 //   morphcut-city merge-reports ...        (pipeline/merge_reports_cli.cpp)
 //   morphcut-city html REPORT [CITY ...]   (pipeline/html_report_cli.cpp)
+//   morphcut-city reproject IN -o OUT --to CRS  (pipeline/reproject_cli.cpp)
 // Each takes argv with argv[0] = the subcommand name and returns the process exit code.
 #pragma once
 
@@ -10,5 +11,6 @@ namespace mc::pipeline {
 int validate_main(int argc, char** argv);
 int merge_reports_main(int argc, char** argv);
 int html_main(int argc, char** argv);
+int reproject_main(int argc, char** argv);
 
 }  // namespace mc::pipeline

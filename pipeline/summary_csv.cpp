@@ -47,7 +47,8 @@ std::vector<std::string> summary_columns(const std::vector<double>& thresholds) 
   return c;
 }
 
-std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector<double>& thresholds) {
+std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector<double>& thresholds,
+                                     int coordinate_decimals) {
   Row w;
   text(w, b.id);
   text(w, b.status);
@@ -76,8 +77,8 @@ std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector
     for (int i = 0; i < 4; ++i) empty(w);
   }
   if (m.centroid) {
-    real(w, m.centroid->x, 3);
-    real(w, m.centroid->y, 3);
+    real(w, m.centroid->x, coordinate_decimals);
+    real(w, m.centroid->y, coordinate_decimals);
     real(w, m.centroid->z, 3);
   } else {
     for (int i = 0; i < 3; ++i) empty(w);
@@ -106,8 +107,8 @@ std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector
   return w;
 }
 
-SummaryWriter::SummaryWriter(const std::string& path, std::vector<double> thresholds)
-    : path_(path), thresholds_(std::move(thresholds)) {
+SummaryWriter::SummaryWriter(const std::string& path, std::vector<double> thresholds, int coordinate_decimals)
+    : path_(path), thresholds_(std::move(thresholds)), decimals_(coordinate_decimals) {
   try {
     file_ = std::make_unique<mc::io::AtomicFile>(path);
   } catch (const std::exception& e) { throw mc::io::WriteError(path + ": " + e.what()); }
@@ -120,7 +121,7 @@ SummaryWriter::~SummaryWriter() = default;
 
 void SummaryWriter::add(const BuildingOutcome& b) {
   auto& w = *csv_;
-  for (const SummaryCell& c : summary_row(b, thresholds_)) {
+  for (const SummaryCell& c : summary_row(b, thresholds_, decimals_)) {
     if (c.kind == SummaryCell::Empty) w.empty();
     else if (c.kind == SummaryCell::Text) w.field(c.text);
     else if (c.kind == SummaryCell::Integer) w.field(c.integer);

@@ -40,12 +40,14 @@ struct SummaryCell {
   int precision = 0;
 };
 // The row of one building, in the order of summary_columns.
-std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector<double>& level_thresholds);
+// `coordinate_decimals`: of the centroid's x and y (3 for metres, 9 for degrees: 0.1 mm either way).
+std::vector<SummaryCell> summary_row(const BuildingOutcome& b, const std::vector<double>& level_thresholds,
+                                     int coordinate_decimals = 3);
 
 class SummaryWriter {
  public:
   // Throws mc::io::WriteError when the file cannot be created.
-  SummaryWriter(const std::string& path, std::vector<double> level_thresholds);
+  SummaryWriter(const std::string& path, std::vector<double> level_thresholds, int coordinate_decimals = 3);
   ~SummaryWriter();
   void add(const BuildingOutcome& b);
   void commit();
@@ -53,6 +55,7 @@ class SummaryWriter {
  private:
   std::string path_;
   std::vector<double> thresholds_;
+  int decimals_ = 3;
   std::unique_ptr<mc::io::AtomicFile> file_;
   std::unique_ptr<mc::io::CsvWriter> csv_;
 };

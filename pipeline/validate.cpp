@@ -104,7 +104,7 @@ void check_structure(const std::string& id, const json& obj, const json& objects
 
 // A part's Solid as a polygon mesh over the feature's vertices; empty with an error when the
 // geometry is not one Solid with one shell.
-PolygonMesh part_solid(const json& obj, const mc::io::Feature& f, ObjectReport& r) {
+PolygonMesh part_solid(const json& obj, const std::vector<Vec3>& vertices, ObjectReport& r) {
   PolygonMesh m;
   const json* geoms = obj.contains("geometry") && obj["geometry"].is_array() ? &obj["geometry"] : nullptr;
   if (!geoms || geoms->size() != 1 || !(*geoms)[0].is_object() || (*geoms)[0].value("type", "") != "Solid") {
@@ -136,12 +136,12 @@ PolygonMesh part_solid(const json& obj, const mc::io::Feature& f, ObjectReport& 
       if (ring.is_array())
         for (const auto& v : ring) {
           const int64_t i = v.is_number_integer() ? v.get<int64_t>() : -1;
-          if (i < 0 || static_cast<size_t>(i) >= f.vertices.size()) {
+          if (i < 0 || static_cast<size_t>(i) >= vertices.size()) {
             bad_ref = true;
             continue;
           }
           auto [it, fresh] = local.try_emplace(i, static_cast<uint32_t>(m.vertices.size()));
-          if (fresh) m.vertices.push_back(f.vertices[static_cast<size_t>(i)]);
+          if (fresh) m.vertices.push_back(vertices[static_cast<size_t>(i)]);
           out.push_back(it->second);
         }
       poly.rings.push_back(std::move(out));
@@ -314,8 +314,22 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
   counts.objects += reports.size();
 
   const mc::io::Transform t = mc::io::parse_transform(h.root, "header");
-  const double scale =
-      t.present ? std::max({std::abs(t.scale.x), std::abs(t.scale.y), std::abs(t.scale.z)}) : 0.0;
+  // Checks in metres, as the parts were checked when written (core/working_frame.hpp).
+  const WorkingFrame frame(h.coords, f.vertices);
+  std::vector<Vec3> metric_copy;
+  if (!frame.identity()) {
+    metric_copy = f.vertices;
+    frame.to_metric(metric_copy);
+  }
+  const std::vector<Vec3>& vertices = frame.identity() ? f.vertices : metric_copy;
+  double scale = t.present ? std::max({std::abs(t.scale.x), std::abs(t.scale.y), std::abs(t.scale.z)}) : 0.0;
+  if (t.present && !frame.identity() && !f.vertices.empty()) {
+    // One grid step in metres, near the building.
+    const Vec3 c = f.vertices.front(), m = frame.to_metric(c);
+    scale = 0;
+    for (const Vec3& step : {Vec3{t.scale.x, 0, 0}, Vec3{0, t.scale.y, 0}, Vec3{0, 0, t.scale.z}})
+      scale = std::max(scale, norm(frame.to_metric(c + step) - m));
+  }
   const SolidTolerances stol{opt.snap, opt.planarity, opt.normals_deg};
   std::vector<ObjectReport> out;
   std::set<std::string> emitted;
@@ -345,7 +359,7 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
       const json& obj = objects[id];
       p.level = obj["attributes"]["morphcut_level"].get<double>();
       p.report.level = p.level;
-      const PolygonMesh m = part_solid(obj, f, p.report);
+      const PolygonMesh m = part_solid(obj, vertices, p.report);
       if (!m.faces.empty()) {
         p.check = check_solid(m, stol);
         for (const auto& e : p.check.errors) p.report.errors.push_back({e.code, e.name, e.message});

@@ -95,9 +95,11 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "merge-reports")
     return mc::pipeline::merge_reports_main(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "html") return mc::pipeline::html_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "reproject")
+    return mc::pipeline::reproject_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
-  std::string input, config_path, output, report, summary, lod, cache_dir, html, graph, gpkg;
+  std::string input, config_path, output, report, summary, lod, cache_dir, html, graph, gpkg, output_crs;
   bool no_graph = false, no_gpkg = false;
   int threads = -1;
   double timeout = -1;
@@ -124,6 +126,10 @@ int main(int argc, char** argv) {
       "--cache", cache_dir,
       "per-building result cache directory: unchanged buildings (same geometry, config and version) "
       "reuse their earlier parts; safe to share between concurrent runs");
+  app.add_option("--output-crs", output_crs,
+                 "write every output in this CRS (e.g. EPSG:32654), reprojecting the input as it is read "
+                 "(horizontal coordinates; heights are kept). Default: the input's CRS, on a grid of at most "
+                 "1e-8 degrees or 1 mm (docs/output-format.md, Coordinates)");
   app.add_flag("--no-report", no_report, "do not write the run report");
   app.add_flag("--no-summary", no_summary, "do not write the summary CSV");
   app.add_option("--graph", graph,
@@ -180,6 +186,7 @@ int main(int argc, char** argv) {
     opt.gpkg = no_gpkg ? "" : (!gpkg.empty() ? gpkg : mc::pipeline::gpkg_path_for_stem(stem));
     opt.config_file = config_path;
     opt.cache_dir = cache_dir;
+    opt.output_crs = output_crs;
     opt.progress = !quiet && mc::pipeline::stderr_is_tty();
     opt.handle_signals = true;
     opt.crash_log = opt.output + ".crashed";
