@@ -94,10 +94,7 @@ def check_roles(png, tool, want, what):
 
 def main():
     build, source = sys.argv[1], sys.argv[2]
-    try:
-        import matplotlib  # noqa: F401
-        import numpy  # noqa: F401
-    except ImportError:
+    if importlib.util.find_spec("matplotlib") is None or importlib.util.find_spec("numpy") is None:
         print(f"SKIPPED: matplotlib is not installed for {sys.executable} (python3-matplotlib)")
         return 77
     tool_path = os.path.join(source, "tools", "render-parts")
