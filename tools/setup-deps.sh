@@ -17,6 +17,7 @@ PKGS=(
   libgeos-dev libboost-filesystem-dev  # tools/val3dity/build.sh: val3dity, the reference validator the tests run (with cmake, g++, CGAL, Eigen above)
   chromium  # tests/tools/html_browser_test.mjs: the HTML report in a real (headless) browser
   libgdal-dev gdal-bin python3-networkx  # massing analytics: GeoPackage output (GDAL/OGR, GEOS unions), ogrinfo and networkx in the tests
+  python3-matplotlib  # tools/render-parts: PNGs of each building's parts coloured by role (and its test, ctest -R render_parts)
 )
 
 missing=()
