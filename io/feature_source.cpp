@@ -30,6 +30,32 @@ bool ends_with_icase(const std::string& s, const std::string& suffix) {
                     [](char ext, char c) { return ext == std::tolower(static_cast<unsigned char>(c)); });
 }
 
+// Latitude-first coordinates turned longitude first (x = easting-like, y = northing-like).
+class LongitudeFirstSource : public FeatureSource {
+ public:
+  explicit LongitudeFirstSource(std::unique_ptr<FeatureSource> in) : in_(std::move(in)), header_(in_->header()) {
+    header_.coords.lat_first = false;
+    if (auto t = header_.root.find("transform"); t != header_.root.end() && t->is_object())
+      for (const char* k : {"scale", "translate"})
+        if (auto v = t->find(k); v != t->end() && v->is_array() && v->size() == 3) std::swap((*v)[0], (*v)[1]);
+    header_.coords_note = "the file's coordinates are latitude first (" + header_.crs +
+                          "): they are written longitude first, as CityJSON writes geographic coordinates";
+  }
+  const Header& header() const override { return header_; }
+  bool next(Feature& out) override {
+    if (!in_->next(out)) return false;
+    for (mc::Vec3& v : out.vertices) std::swap(v.x, v.y);
+    return true;
+  }
+  const std::vector<std::string>& problems() const override { return in_->problems(); }
+  std::string format() const override { return in_->format(); }
+  std::optional<size_t> feature_count() const override { return in_->feature_count(); }
+
+ private:
+  std::unique_ptr<FeatureSource> in_;
+  Header header_;
+};
+
 }  // namespace
 
 bool is_citygml_path(const std::string& path) {
@@ -39,8 +65,12 @@ bool is_citygml_path(const std::string& path) {
 }
 
 std::unique_ptr<FeatureSource> open_feature_source(const std::string& path) {
-  if (is_citygml_path(path)) return std::make_unique<CityGmlReader>(path);
-  return std::make_unique<CityJsonSource>(path);
+  std::unique_ptr<FeatureSource> s;
+  if (is_citygml_path(path)) s = std::make_unique<CityGmlReader>(path);
+  else s = std::make_unique<CityJsonSource>(path);
+  if (s->header().coords.geographic() && s->header().coords.lat_first)
+    s = std::make_unique<LongitudeFirstSource>(std::move(s));
+  return s;
 }
 
 }  // namespace mc::io

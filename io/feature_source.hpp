@@ -31,6 +31,9 @@ bool is_citygml_path(const std::string& path);
 
 // CityGML by extension (is_citygml_path), else CityJSON / CityJSONSeq ("-" = CityJSONSeq on
 // stdin). Throws ReadError when the file cannot be opened or is not of its format.
+// Geographic coordinates come longitude first, as CityJSON writes them: a file in a CRS whose
+// axis order is latitude first (GML follows the CRS: EPSG:4326, 4979, 6697, ...) has its first
+// two coordinates swapped as it is read.
 std::unique_ptr<FeatureSource> open_feature_source(const std::string& path);
 
 }  // namespace mc::io

@@ -1,6 +1,8 @@
 #include "pipeline/output_grid.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "io/cityjson_common.hpp"
@@ -9,11 +11,16 @@ namespace mc::pipeline {
 
 namespace {
 
-// `scale` divided by the smallest power of ten that brings it to `limit` or below.
+// `scale` divided by the smallest power of ten that brings it to `limit` or below, read back from
+// its 15 significant digits (0.001 / 1e5 is 1e-08, not 1.0000000000000002e-08).
 double refined(double scale, double limit) {
   double s = std::abs(scale);
-  for (int k = 0; k < 15 && s > limit * (1 + 1e-9); ++k) s /= 10;
-  return std::copysign(s, scale);
+  int k = 0;
+  for (; k < 15 && s > limit * (1 + 1e-9); ++k) s /= 10;
+  if (k == 0) return scale;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", s);
+  return std::copysign(std::strtod(text, nullptr), scale);
 }
 
 }  // namespace
