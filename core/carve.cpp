@@ -32,8 +32,8 @@ bool on_outer_box(const Vec3& v, const BBox& outer) {
 struct HairTest {
   double on, hair;
   const BBox& outer;
-  HairTest(const Plane& pl, double delta, const BBox& box)
-      : on(1e-9 * (1 + std::abs(pl.d))), hair(0.1 * delta), outer(box) {}
+  HairTest(const Plane& pl, double hair_distance, const BBox& box)
+      : on(1e-9 * (1 + std::abs(pl.d))), hair(hair_distance), outer(box) {}
   // `dist`: the vertex's unsigned distance from the plane.
   bool operator()(double dist, const Vec3& v) const {
     return dist > on && dist < hair && !on_outer_box(v, outer);
@@ -53,10 +53,10 @@ struct CellVertices {
 // `No` also holds for every sub-cell of c (the plane can be dropped for them); `Hair` only for
 // this cell (a vertex a hair from the plane, which a later split may remove: keep the plane).
 Crossing crosses(const CellComplex& cx, const CellVertices& c, const CarvePlane& q, double delta,
-                 const BBox& outer) {
+                 double hair_distance, const BBox& outer) {
   if (!c.box.overlaps(q.bbox, 3 * delta)) return Crossing::No;
   const Plane& pl = cx.planes()[q.plane];
-  const HairTest hair(pl, delta, outer);
+  const HairTest hair(pl, hair_distance, outer);
   bool pos = false, neg = false, near = false;
   for (uint32_t v : c.ids) {
     const double s = pl.signed_distance(cx.point(v));
@@ -72,10 +72,10 @@ constexpr double kHairCutShare = 0.2;
 
 // The smallest distance from plane q of the vertices of cell c that lie a hair from it (see
 // `HairTest`); +inf when there is none.
-double hair_gap(const CellComplex& cx, const CellVertices& c, const CarvePlane& q, double delta,
+double hair_gap(const CellComplex& cx, const CellVertices& c, const CarvePlane& q, double hair_distance,
                 const BBox& outer) {
   const Plane& pl = cx.planes()[q.plane];
-  const HairTest hair(pl, delta, outer);
+  const HairTest hair(pl, hair_distance, outer);
   double gap = std::numeric_limits<double>::infinity();
   for (uint32_t v : c.ids) {
     const double s = std::abs(pl.signed_distance(cx.point(v)));
@@ -161,6 +161,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
                   const CarveParams& p, std::chrono::steady_clock::time_point deadline) {
   CarveResult res;
   const double unit = p.cell_size * p.cell_size * p.cell_size;
+  const double hair = p.hair >= 0 ? p.hair : 0.1 * p.dist;
   const double box_volume = cx.cell_volume(cx.root_cell());
   const BBox outer = cx.cell_bbox(cx.root_cell());
   std::vector<uint8_t> inside_label(cx.num_cells() + 1024, 0);
@@ -280,7 +281,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     std::vector<uint32_t> deferred;
     const CellVertices cv(cx, c);
     for (; i < remaining.size(); ++i) {
-      const Crossing x = crosses(cx, cv, planes[remaining[i]], p.dist, outer);
+      const Crossing x = crosses(cx, cv, planes[remaining[i]], p.dist, hair, outer);
       if (x == Crossing::Yes) break;
       if (x == Crossing::Hair) deferred.push_back(remaining[i]);
     }
@@ -294,7 +295,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       // docs/design.md "Valid solids at every step").
       if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) continue;
       auto it = std::find_if(deferred.begin(), deferred.end(), [&](uint32_t q) {
-        return hair_gap(cx, cv, planes[q], p.dist, outer) >= p.min_gap;
+        return hair_gap(cx, cv, planes[q], hair, outer) >= p.min_gap;
       });
       if (it == deferred.end()) continue;
       i = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
@@ -317,7 +318,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     for (int k = 0; k < 2; ++k) {
       const CellVertices cv_child(cx, child[k]);
       for (uint32_t q : remaining)
-        if (crosses(cx, cv_child, planes[q], p.dist, outer) != Crossing::No) kept[k].push_back(q);
+        if (crosses(cx, cv_child, planes[q], p.dist, hair, outer) != Crossing::No) kept[k].push_back(q);
       box[k] = cv_child.box;
       cx.cell_volume(child[k]);  // measured (and cached) before the votes read it
     }
@@ -399,6 +400,42 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
     flipped_volume += cx.cell_volume(pick);
     ++flips;
   }
+}
+
+size_t flip_thin_cells(const CellComplex& cx, std::vector<uint32_t>& inside, double width,
+                       double& flipped_volume) {
+  std::unordered_set<uint32_t> in(inside.begin(), inside.end());
+  auto depth = [&](uint32_t c) {
+    const std::vector<uint32_t> vs = cx.cell_vertices(c);
+    double d = std::numeric_limits<double>::infinity();
+    for (uint32_t f : cx.cell(c).facets) {
+      const Vec3 n = cx.outward_normal(f, c);
+      const Vec3& p = cx.point(cx.facet(f).loop[0]);
+      double deepest = 0;
+      for (uint32_t v : vs) deepest = std::max(deepest, dot(n, p - cx.point(v)));
+      d = std::min(d, deepest);
+    }
+    return d;
+  };
+  std::vector<uint32_t> flip;
+  for (uint32_t c : cx.live_cells()) {
+    const bool is_in = in.count(c) > 0;
+    bool boundary = false, open = false;
+    for (uint32_t f : cx.cell(c).facets) {
+      const uint32_t o = cx.other_side(f, c);
+      if (o == CellComplex::kNone) open = true;
+      else if ((in.count(o) > 0) != is_in) boundary = true;
+    }
+    if (boundary && (is_in || !open) && depth(c) < width) flip.push_back(c);
+  }
+  for (uint32_t c : flip) {
+    if (in.count(c)) in.erase(c);
+    else in.insert(c);
+    flipped_volume += cx.cell_volume(c);
+  }
+  inside.assign(in.begin(), in.end());
+  std::sort(inside.begin(), inside.end());
+  return flip.size();
 }
 
 size_t fill_cavities(const CellComplex& cx, std::vector<uint32_t>& inside, double& filled_volume) {

@@ -34,6 +34,7 @@ struct CarveParams {
   size_t max_cells = 50000;
   int vote_batch = 9;      // points deciding a cell the surface does not touch (0 = full vote)
   double min_gap = 0.002;  // see PreprocessParams::min_gap
+  double hair = -1;        // see Preprocessed::hair; < 0: δ/10
   // Whether the input surface touches a box (conservative); null = always full votes.
   std::function<bool(const BBox&)> surface_touches;
   // For a valid solid (docs/algorithm.md §7.3, "grazed cells"): whether the input surface reaches
@@ -69,6 +70,13 @@ std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, u
 // cell around it changes side (each cell at most once).
 // Returns the number of cells flipped; `flipped_volume` accumulates their volume.
 size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume);
+
+// Cells thinner than `width` (their smallest depth behind any of their facets) on the boundary of
+// `inside` change side: a slab or wedge thinner than the output grid cannot be written (its faces
+// fold onto each other when rounded; docs/algorithm.md §8). An outside cell that reaches the
+// carving box stays outside. Returns the number of cells flipped; adds their volume.
+size_t flip_thin_cells(const CellComplex& cx, std::vector<uint32_t>& inside, double width,
+                       double& flipped_volume);
 
 // Fills cavities: outside cells that cannot reach the carving box's boundary through other outside
 // cells (voids enclosed by the building) become inside. Returns how many; adds their volume.

@@ -53,7 +53,7 @@ PreparedPart refine(Preprocessed& pre, const LevelPart& w, const AnalysisContext
   // vertices that collapse when the output is quantised (invalid solids): that cell is left
   // whole, and a cut along the plane follows the cell's boundary there instead (the parts stay
   // unions of cells, hence closed). Same rule as in carving.
-  const double hair = 0.1 * ctx.dist;
+  const double hair = pre.hair;
   auto hair_close = [&](uint32_t c, uint32_t plane) {
     const Plane& pl = reg[plane];
     for (uint32_t v : cx.cell_vertices(c)) {

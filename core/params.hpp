@@ -28,6 +28,11 @@ struct PreprocessParams {
   // hair-close vertices all keep at least this distance (model units: 2 x a 1 mm output grid),
   // when at least 20% of the cell is mislabelled. 0 = never.
   double min_gap = 0.002;
+  // The output grid's step near the building (model units), set per file by the pipeline from the
+  // output's transform (not a configuration key; 0 = none). No plane may pass closer than one step
+  // to a vertex without going through it, nor a hair-blocked plane cut closer than two steps: such
+  // vertices would collapse on the grid (docs/algorithm.md §7.4).
+  double output_grid = 0;
   // Fitted planes sharing an input corner (4+ planes) are made to meet there exactly, and a missing
   // face's plane passing a hair from the line of two fitted planes goes through that line
   // (core/corner_snap.hpp). false = the paper's behaviour (planes as fitted).

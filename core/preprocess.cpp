@@ -94,6 +94,7 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   out.cell_size = p.cell_size > 0 ? p.cell_size : p.f_d * diag0;
   out.dist = p.dist_thresh > 0 ? p.dist_thresh : out.cell_size / 4;
   out.angle_rad = p.angle_thresh_deg * M_PI / 180.0;
+  out.hair = std::max(0.1 * out.dist, p.output_grid);
   // The oracle decides parity per closed shell, and which shells are closed is topology: it
   // sees the input welded only where positions coincide (1e-9 of the diagonal). The weld of
   // the other stages (δ/10, at most 1e-6 of the diagonal) can join float-neighbour vertices of
@@ -314,7 +315,8 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
   cp.inconsistency = p.inconsistency;
   cp.seed = p.seed;
   cp.vote_batch = p.vote_batch;
-  cp.min_gap = p.min_gap;
+  cp.min_gap = p.min_gap > 0 ? std::max(p.min_gap, 2 * p.output_grid) : 0.0;
+  cp.hair = out.hair;
   const SurfaceIndex index(tris);
 
   // One labelling: carving with one oracle, then the singleton repairs (§8).
@@ -355,6 +357,14 @@ Preprocessed preprocess(const PolygonMesh& input, const PreprocessParams& p, Clo
         c, deadline);
     l.inside = l.carve.inside;
     if (l.inside.empty()) return l;
+    // Slabs and wedges thinner than two steps of the output grid cannot be written valid (§8).
+    if (p.output_grid > 0) {
+      double thin = 0;
+      if (const size_t n = flip_thin_cells(*l.complex, l.inside, 2 * p.output_grid, thin))
+        l.problems.push_back("changed the side of " + std::to_string(n) +
+                             " cell(s) thinner than two steps of the output grid (volume " +
+                             std::to_string(thin) + ")");
+    }
     // A void enclosed by the building would be an inner shell of the cell and of a part: filled.
     double filled = 0;
     size_t cavities = fill_cavities(*l.complex, l.inside, filled);

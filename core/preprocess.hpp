@@ -44,7 +44,10 @@ struct Preprocessed {
   int up_axis = 2;
   double cell_size = 0, dist = 0;
   double angle_rad = 0;  // θa (plane classes, candidate snapping)
-  BBox box;              // bounding box of the centred, z-up input (A_diag, snapping)
+  // No plane may pass closer than this to a vertex without going through it (carving and cuts):
+  // δ/10, or the output grid's step when that is larger (docs/algorithm.md §7.4).
+  double hair = 0;
+  BBox box;  // bounding box of the centred, z-up input (A_diag, snapping)
   // Held by pointer: the complex refers to the registry, so both must keep their address when a
   // Preprocessed is moved (e.g. assigned from preprocess()).
   std::unique_ptr<PlaneRegistry> planes = std::make_unique<PlaneRegistry>();

@@ -4,8 +4,8 @@
 // of latitude and longitude with heights in metres (geographic CRSs such as EPSG:4979 or 6697),
 // or earth-centred, earth-fixed metres (geocentric CRSs such as EPSG:4978, where z is not up).
 //
-// Geographic (and geocentric) coordinates are mapped to a transverse Mercator projection whose central meridian
-// and origin are the building's own centre (GeographicLib's TransverseMercator on the WGS84
+// Geographic (and geocentric) coordinates are mapped to a transverse Mercator projection whose central
+// meridian and origin are the building's own centre (GeographicLib's TransverseMercator on the WGS84
 // ellipsoid, scale 1 on the central meridian), heights kept: the frame is conformal, its scale
 // error is k - 1 = x² / 2R² (1.2e-8 at 1 km from the centre, far below any tolerance), and a roof
 // of constant ellipsoidal height stays flat (a local tangent plane would bend it by d² / 2R:

@@ -33,11 +33,13 @@ bool ends_with_icase(const std::string& s, const std::string& suffix) {
 // Latitude-first coordinates turned longitude first (x = easting-like, y = northing-like).
 class LongitudeFirstSource : public FeatureSource {
  public:
-  explicit LongitudeFirstSource(std::unique_ptr<FeatureSource> in) : in_(std::move(in)), header_(in_->header()) {
+  explicit LongitudeFirstSource(std::unique_ptr<FeatureSource> in)
+      : in_(std::move(in)), header_(in_->header()) {
     header_.coords.lat_first = false;
     if (auto t = header_.root.find("transform"); t != header_.root.end() && t->is_object())
       for (const char* k : {"scale", "translate"})
-        if (auto v = t->find(k); v != t->end() && v->is_array() && v->size() == 3) std::swap((*v)[0], (*v)[1]);
+        if (auto v = t->find(k); v != t->end() && v->is_array() && v->size() == 3)
+          std::swap((*v)[0], (*v)[1]);
     header_.coords_note = "the file's coordinates are latitude first (" + header_.crs +
                           "): they are written longitude first, as CityJSON writes geographic coordinates";
   }

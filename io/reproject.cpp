@@ -52,7 +52,8 @@ Reprojector::Reprojector(const std::string& from, const std::string& to) : impl_
   if (!raw) throw std::runtime_error("PROJ has no transformation from '" + from + "' to '" + to + "'");
   impl_->op = proj_normalize_for_visualization(impl_->ctx, raw);  // longitude first on both sides
   proj_destroy(raw);
-  if (!impl_->op) throw std::runtime_error("cannot normalise the axis order from '" + from + "' to '" + to + "'");
+  if (!impl_->op)
+    throw std::runtime_error("cannot normalise the axis order from '" + from + "' to '" + to + "'");
 }
 
 Reprojector::~Reprojector() = default;
@@ -61,8 +62,7 @@ Vec3 Reprojector::apply(const Vec3& p) const {
   if (!is_finite(p)) return p;
   proj_errno_reset(impl_->op);
   const PJ_COORD r = proj_trans(impl_->op, PJ_FWD, proj_coord(p.x, p.y, 0, 0));
-  if (proj_errno(impl_->op) != 0 || !std::isfinite(r.xy.x) || !std::isfinite(r.xy.y))
-    return {NAN, NAN, p.z};
+  if (proj_errno(impl_->op) != 0 || !std::isfinite(r.xy.x) || !std::isfinite(r.xy.y)) return {NAN, NAN, p.z};
   return {r.xy.x, r.xy.y, p.z};
 }
 
@@ -86,7 +86,8 @@ ReprojectedSource::ReprojectedSource(std::unique_ptr<FeatureSource> in, const st
                                      std::optional<double> scale)
     : in_(std::move(in)), header_(in_->header()) {
   if (header_.crs.empty())
-    throw std::runtime_error("the input has no CRS (metadata.referenceSystem / srsName): nothing to reproject from");
+    throw std::runtime_error(
+        "the input has no CRS (metadata.referenceSystem / srsName): nothing to reproject from");
   proj_ = std::make_unique<Reprojector>(header_.crs, to);
   std::string note;
   const CoordinateSystem cs = coordinate_system(to, false, &note);
@@ -99,11 +100,11 @@ ReprojectedSource::ReprojectedSource(std::unique_ptr<FeatureSource> in, const st
     const Vec3 o = proj_->apply(t.present ? t.translate : Vec3{0, 0, 0});
     const double unit = cs.geographic() ? 0.01 : 1.0;
     const double zs = t.present ? t.scale.z : 0.001;
-    root["transform"] = {{"scale", {s, s, zs}},
-                         {"translate",
-                          {std::isfinite(o.x) ? std::floor(o.x / unit) * unit : 0.0,
-                           std::isfinite(o.y) ? std::floor(o.y / unit) * unit : 0.0,
-                           t.present ? t.translate.z : 0.0}}};
+    root["transform"] = {
+        {"scale", {s, s, zs}},
+        {"translate",
+         {std::isfinite(o.x) ? std::floor(o.x / unit) * unit : 0.0,
+          std::isfinite(o.y) ? std::floor(o.y / unit) * unit : 0.0, t.present ? t.translate.z : 0.0}}};
   }
   if (!root.contains("metadata") || !root["metadata"].is_object()) root["metadata"] = json::object();
   json& md = root["metadata"];
@@ -138,9 +139,7 @@ bool ReprojectedSource::next(Feature& out) {
   if (!in_->next(out)) return false;
   try {
     proj_->apply(out.vertices);
-  } catch (const std::exception& e) {
-    throw ReadError(out.id + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw ReadError(out.id + ": " + e.what()); }
   return true;
 }
 

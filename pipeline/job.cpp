@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -13,9 +14,12 @@
 #include "core/preprocess.hpp"
 #include "io/cityjson_building.hpp"
 #include "io/cityjson_common.hpp"
+#include "io/off_obj.hpp"
 #include "pipeline/level_views.hpp"
 #include "pipeline/massing.hpp"
 #include "pipeline/measures.hpp"
+#include "pipeline/output_grid.hpp"
+#include "pipeline/part_merge.hpp"
 #include "pipeline/part_objects.hpp"
 #include "pipeline/part_repair.hpp"
 #include "pipeline/rounding.hpp"
@@ -129,7 +133,10 @@ struct EncodedLevel {
   size_t dropped_faces = 0, repaired_parts = 0, split_faces = 0;
   std::string grid_repair;  // LevelOutcome::grid_repair
   double check_seconds = 0;
-  std::string defect;  // non-empty: a part fails the checks, and nothing of the level is kept
+  std::string defect;    // non-empty: a part fails the checks, and nothing of the level is kept
+  int failed_part = -1;  // the part the defect is on
+  // The parts actually encoded when slivers were merged into neighbours (pipeline/part_merge.hpp).
+  std::optional<std::vector<PartResult>> merged;
 };
 
 EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
@@ -156,6 +163,12 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
     if (!solids.back().defect.empty()) {
       e.defect =
           "part " + std::to_string(j) + " is invalid on the output grid (" + solids.back().defect + ")";
+      e.failed_part = static_cast<int>(j);
+      // For a developer: the part that failed, before rounding (docs/reliability.md).
+      if (const char* dir = std::getenv("MC_DUMP_GRID_DEFECTS"))
+        mc::io::write_off(std::string(dir) + "/" + building + "-L" + std::to_string(i) + "-p" +
+                              std::to_string(j) + (conforming ? "" : "-own") + ".off",
+                          meshes[j]);
       return e;
     }
   }
@@ -246,7 +259,7 @@ EncodedLevel relabelled(const EncodedLevel& previous, const std::string& buildin
 //      vertex rounded off its straight edge can force a sliver triangle that folds into the part.
 //      Valid parts, but a neighbour's corner may then stand a fraction of a grid step inside it.
 // On failure the pool is back at its mark and the first defect is reported.
-EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
+EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double threshold,
                                   const std::vector<PartResult>& parts, const Preprocessed& pre,
                                   const std::string& lod, const std::string& version, VertexPool& pool) {
   const size_t mark = pool.mark();
@@ -254,6 +267,7 @@ EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double 
   if (e.defect.empty()) return e;
   double spent = e.check_seconds;  // every attempt's checks count
   const std::string first = e.defect;
+  const int first_part = e.failed_part;
   if (pool.can_cluster())
     for (int steps : {1, 2, 4}) {
       pool.rollback(mark);
@@ -276,7 +290,38 @@ EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double 
   }
   pool.rollback(mark);
   e.defect = first;
+  e.failed_part = first_part;
   return e;
+}
+
+// encode_parts_on_grid, then, while a part still fails, that part merged into the neighbour it
+// shares the largest face with and the level encoded again (pipeline/part_merge.hpp): a level of
+// fewer parts rather than another level. On failure the first defect is reported.
+EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
+                                  const std::vector<PartResult>& parts, const Preprocessed& pre,
+                                  const std::string& lod, const std::string& version, VertexPool& pool) {
+  EncodedLevel e = encode_parts_on_grid(building, i, threshold, parts, pre, lod, version, pool);
+  if (e.defect.empty() || parts.size() < 2) return e;
+  const EncodedLevel first = e;
+  double spent = e.check_seconds;
+  std::vector<PartResult> current = parts;
+  for (size_t merges = 1; current.size() > 1 && e.failed_part >= 0; ++merges) {
+    const int k = largest_neighbour(level_part_meshes(pre, current), static_cast<size_t>(e.failed_part));
+    if (k < 0) break;
+    current = merge_parts(current, static_cast<size_t>(e.failed_part), static_cast<size_t>(k), pre);
+    e = encode_parts_on_grid(building, i, threshold, current, pre, lod, version, pool);
+    spent += e.check_seconds;
+    e.check_seconds = spent;
+    if (e.defect.empty()) {
+      e.grid_repair = "merged " + std::to_string(merges) + " part(s)" +
+                      (e.grid_repair.empty() ? std::string() : ", " + e.grid_repair);
+      e.merged = std::move(current);
+      return e;
+    }
+  }
+  EncodedLevel out = first;
+  out.check_seconds = spent;
+  return out;
 }
 
 std::string deadline_reason(const Params& p, const char* where) {
@@ -285,7 +330,12 @@ std::string deadline_reason(const Params& p, const char* where) {
 
 // The decomposing part of the job; throws on failure (the caller turns that into "failed").
 void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, const mc::io::Header& h,
-                        const mc::WorkingFrame& frame, const Params& p, const RunConfig& rc) {
+                        const mc::WorkingFrame& frame, const Params& params, const RunConfig& rc) {
+  const mc::io::Transform transform = mc::io::parse_transform(h.root, "header");
+  // No vertex closer than the output grid's step (docs/algorithm.md §7.4).
+  Params p = params;
+  if (!in.mesh.vertices.empty())
+    p.pre.output_grid = grid_step_metres(transform, frame, frame.to_file(in.mesh.vertices.front()));
   const auto start = Clock::now();
   const auto deadline =
       p.timeout_s > 0
@@ -345,7 +395,6 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   out.size.concave_edges = dec.concave_edges;
 
   t = Clock::now();
-  const mc::io::Transform transform = mc::io::parse_transform(h.root, "header");
   const std::string lod = in.lod.empty() ? std::string("2") : in.lod;
   std::vector<Vec3> new_vertices;
   VertexPool pool(new_vertices, transform, frame);
@@ -357,6 +406,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   bool fell_back = false;
   // The last level encoded, before its massing attributes, with its parts (`relabelled`).
   std::optional<std::pair<EncodedLevel, const std::vector<PartResult>*>> reusable;
+  std::deque<std::vector<PartResult>> merged_levels;  // parts of levels written with merged slivers
   for (size_t i = 0; i < p.dec.levels.size(); ++i) {
     if (!writes_level(rc, i)) continue;
     const LevelSource src = source_for(dec, i);
@@ -394,10 +444,15 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
       if (!e.defect.empty()) throw std::runtime_error(why + tried);
       notes.push_back(why + ", " + fallback + " written instead");
     }
+    if (e.merged) {
+      merged_levels.push_back(std::move(*e.merged));
+      e.merged.reset();
+      parts = &merged_levels.back();
+    }
     LevelOutcome& lv = e.lv;
     lv.fallback = fallback;
     fell_back = fell_back || !fallback.empty();
-    if (src.result && fallback.empty()) {
+    if (src.result && fallback.empty() && parts == &src.result->parts) {
       const LevelResult& r = *src.result;
       lv.convexity = r.convexity;
       lv.mean_convexity = r.mean_convexity;

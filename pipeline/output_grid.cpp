@@ -1,5 +1,6 @@
 #include "pipeline/output_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,12 +33,13 @@ OutputGrid refine_output_grid(mc::io::Header& h) {
   if (!t.present) return g;
   g.input_scale = g.scale = t.scale;
   const CoordinateSystem& cs = h.coords;
+  // A linear grid is the user's choice (parts are made to fit it: docs/algorithm.md §7.4); a
+  // grid of degrees set for other data (CityGML's millimetre default) is not.
   if (cs.geographic()) {
     g.scale.x = refined(t.scale.x, 1e-8);
     g.scale.y = refined(t.scale.y, 1e-8);
+    if (cs.vertical_unit > 0) g.scale.z = refined(t.scale.z, 0.001 / cs.vertical_unit);
   }
-  if (cs.kind != CoordinateSystem::Kind::Geocentric && cs.vertical_unit > 0)
-    g.scale.z = refined(t.scale.z, 0.001 / cs.vertical_unit);
   g.refined = !(g.scale == t.scale);
   if (!g.refined) return g;
   h.root["transform"]["scale"] = {g.scale.x, g.scale.y, g.scale.z};
@@ -48,6 +50,16 @@ OutputGrid refine_output_grid(mc::io::Header& h) {
        "keeps its coordinates";
   g.note = o.str();
   return g;
+}
+
+double grid_step_metres(const mc::io::Transform& t, const WorkingFrame& frame, const Vec3& p) {
+  if (!t.present) return 0;
+  if (frame.identity()) return std::max({std::abs(t.scale.x), std::abs(t.scale.y), std::abs(t.scale.z)});
+  const Vec3 m = frame.to_metric(p);
+  double step = 0;
+  for (const Vec3& d : {Vec3{t.scale.x, 0, 0}, Vec3{0, t.scale.y, 0}, Vec3{0, 0, t.scale.z}})
+    step = std::max(step, norm(frame.to_metric(p + d) - m));
+  return step;
 }
 
 }  // namespace mc::pipeline

@@ -1,12 +1,15 @@
-// The grid parts are written on (docs/output-format.md, "Coordinates"). Parts are new geometry:
-// their vertices are intersections of planes, never on the input's grid, and a grid coarser than
-// the checks' tolerances folds their slivers. The file's `transform` is kept when it is fine
-// enough and refined by a power of ten otherwise, so that every input vertex stays exactly on the
-// new grid: at most 1e-8 degrees (about 1.1 mm) for geographic coordinates, at most 1 mm of height.
+// The grid parts are written on (docs/output-format.md, "Coordinates"). A file in metres (or
+// feet) keeps its `transform`: the decomposition makes its parts fit that grid (no vertex closer
+// to a plane than one step: docs/algorithm.md §7.4). A geographic file's grid is refined by a
+// power of ten, so that every input vertex stays exactly on the new grid, to at most 1e-8 degrees
+// (about 1.1 mm) and 1 mm of height: CityGML input gets a default grid of 0.001 units, and a grid
+// of degrees chosen for display says nothing about the parts.
 #pragma once
 #include <string>
 
 #include "core/vec3.hpp"
+#include "core/working_frame.hpp"
+#include "io/cityjson_common.hpp"
 #include "io/cityjson_types.hpp"
 
 namespace mc::pipeline {
@@ -20,5 +23,9 @@ struct OutputGrid {
 
 // Refines `h.root["transform"]` in place where it is coarser than the limits above.
 OutputGrid refine_output_grid(mc::io::Header& h);
+
+// The largest step of the grid `t` near `file_point`, in metres of the working frame (one step
+// of each axis mapped by `frame`); 0 without a transform.
+double grid_step_metres(const mc::io::Transform& t, const WorkingFrame& frame, const Vec3& file_point);
 
 }  // namespace mc::pipeline

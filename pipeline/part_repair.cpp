@@ -136,7 +136,18 @@ std::vector<GridFace> triangles_of(const GridFace& f, const std::vector<Vec3>& p
     rings.push_back(std::move(r));
   }
   std::vector<std::array<uint32_t, 3>> tris;
-  if (!triangulate_polygon_canonical(rings, pts, tris)) return {};
+  if (!triangulate_polygon_canonical(rings, pts, tris)) {
+    // A ring the grid folded across itself has no triangulation in its plane; a fan from its
+    // smallest id (the same in every part that shares the face) may still close the shell
+    // validly: the part's check decides.
+    if (f.rings.size() != 1 || f.rings[0].size() < 3) return {};
+    const std::vector<int64_t>& r = f.rings[0];
+    const size_t s = static_cast<size_t>(std::min_element(r.begin(), r.end()) - r.begin());
+    std::vector<GridFace> out;
+    for (size_t k = 1; k + 1 < r.size(); ++k)
+      out.push_back({{{r[s], r[(s + k) % r.size()], r[(s + k + 1) % r.size()]}}, f.semantic, f.neighbour});
+    return out;
+  }
   std::vector<GridFace> out;
   for (const auto& t : tris) out.push_back({{{ids[t[0]], ids[t[1]], ids[t[2]]}}, f.semantic, f.neighbour});
   return out;

@@ -24,9 +24,10 @@ int reproject_main(int argc, char** argv) {
   app.add_option("INPUT", input, "input city (any format morphcut-city reads)")->required();
   app.add_option("-o,--output", output, "output CityJSON (.jsonl: CityJSONSeq)")->required();
   app.add_option("--to", to, "target CRS, e.g. EPSG:32631 or EPSG:4979")->required();
-  app.add_option("--scale", scale,
-                 "horizontal grid of the output transform (default 1e-8 for degrees, 0.001 for metres); heights "
-                 "keep the input's")
+  app.add_option(
+         "--scale", scale,
+         "horizontal grid of the output transform (default 1e-8 for degrees, 0.001 for metres); heights "
+         "keep the input's")
       ->check(CLI::PositiveNumber);
   app.footer(
       "Horizontal coordinates are transformed with PROJ (offline: no grid is fetched); heights are kept "
@@ -46,9 +47,7 @@ int reproject_main(int argc, char** argv) {
     writer.close();
     std::fprintf(stderr, "morphcut-city reproject: %zu features -> %s (%s)\n", n, output.c_str(), to.c_str());
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "morphcut-city reproject: %s\n", e.what());
-  }
+  } catch (const std::exception& e) { std::fprintf(stderr, "morphcut-city reproject: %s\n", e.what()); }
   return kExitUsage;
 }
 

@@ -11,6 +11,7 @@
 #include "io/cityjson_building.hpp"
 #include "io/cityjson_common.hpp"
 #include "io/cityjson_reader.hpp"
+#include "pipeline/output_grid.hpp"
 
 namespace mc::pipeline {
 
@@ -322,14 +323,7 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
     frame.to_metric(metric_copy);
   }
   const std::vector<Vec3>& vertices = frame.identity() ? f.vertices : metric_copy;
-  double scale = t.present ? std::max({std::abs(t.scale.x), std::abs(t.scale.y), std::abs(t.scale.z)}) : 0.0;
-  if (t.present && !frame.identity() && !f.vertices.empty()) {
-    // One grid step in metres, near the building.
-    const Vec3 c = f.vertices.front(), m = frame.to_metric(c);
-    scale = 0;
-    for (const Vec3& step : {Vec3{t.scale.x, 0, 0}, Vec3{0, t.scale.y, 0}, Vec3{0, 0, t.scale.z}})
-      scale = std::max(scale, norm(frame.to_metric(c + step) - m));
-  }
+  const double scale = grid_step_metres(t, frame, f.vertices.empty() ? Vec3{} : f.vertices.front());
   const SolidTolerances stol{opt.snap, opt.planarity, opt.normals_deg};
   std::vector<ObjectReport> out;
   std::set<std::string> emitted;
