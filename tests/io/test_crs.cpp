@@ -7,8 +7,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <vector>
 
 #include "io/crs.hpp"
+#include "io/reproject.hpp"
 
 using mc::io::CrsTransformer;
 
@@ -149,3 +151,57 @@ TEST(Crs, MovedTransformerStillWorks) {
 }
 
 }  // namespace
+
+TEST(CoordinateSystem, GeographicProjectedFeetAndGeocentricFromPROJ) {
+  using K = mc::CoordinateSystem::Kind;
+  std::string note;
+  // WGS 84 3D and JGD2011 + JGD2011 height (PLATEAU): degrees, latitude first in GML's order.
+  for (const char* crs :
+       {"EPSG:4979", "https://www.opengis.net/def/crs/EPSG/0/6697", "EPSG:4326", "EPSG:6668"}) {
+    SCOPED_TRACE(crs);
+    const auto gml = mc::io::coordinate_system(crs, true, &note);
+    EXPECT_EQ(gml.kind, K::Geographic);
+    EXPECT_TRUE(gml.lat_first);
+    EXPECT_EQ(gml.vertical_unit, 1.0);
+    EXPECT_FALSE(mc::io::coordinate_system(crs, false, &note).lat_first);  // CityJSON: longitude first
+  }
+  // RD New + NAP: metres.
+  const auto rd = mc::io::coordinate_system("EPSG:7415", false, &note);
+  EXPECT_EQ(rd.kind, K::Metric);
+  EXPECT_TRUE(rd.metric());
+  // NAD83 / New York Long Island (ftUS): feet horizontally, and heights taken in the same unit.
+  const auto ny = mc::io::coordinate_system("EPSG:2263", false, &note);
+  EXPECT_EQ(ny.kind, K::Scaled);
+  EXPECT_NEAR(ny.horizontal_unit, 0.3048006096, 1e-9);
+  EXPECT_NEAR(ny.vertical_unit, 0.3048006096, 1e-9);
+  // NAD83 / NY Long Island ftUS + NAVD88 height (ftUS).
+  const auto ny3 = mc::io::coordinate_system("EPSG:6539+6360", false, &note);
+  EXPECT_EQ(ny3.kind, K::Scaled);
+  EXPECT_NEAR(ny3.vertical_unit, 0.3048006096, 1e-9);
+  EXPECT_EQ(mc::io::coordinate_system("EPSG:4978", false, &note).kind, K::Geocentric);
+  // None: metres, silently; unknown: metres, with a note.
+  note.clear();
+  EXPECT_TRUE(mc::io::coordinate_system("", false, &note).metric());
+  EXPECT_TRUE(note.empty());
+  EXPECT_TRUE(mc::io::coordinate_system("EPSG:99999999", false, &note).metric());
+  EXPECT_NE(note.find("not known to PROJ"), std::string::npos) << note;
+}
+
+TEST(Reprojector, RdNewToWgs84AgreesWithThePublishedPolynomialsAndKeepsHeights) {
+  const mc::io::Reprojector to_wgs84("EPSG:7415", "EPSG:4979");
+  const mc::io::Reprojector back("EPSG:4979", "EPSG:28992");
+  std::vector<mc::Vec3> pts = {{85000, 446000, -0.61}, {155000, 463000, 12.5}, {86123.456, 447000.5, 30}};
+  const std::vector<mc::Vec3> rd = pts;
+  to_wgs84.apply(pts);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const auto ref = rd_to_wgs84_approx(rd[i].x, rd[i].y);
+    EXPECT_LT(metres(pts[i].x, pts[i].y, ref.first, ref.second), 2.0);  // longitude first
+    EXPECT_EQ(pts[i].z, rd[i].z);
+  }
+  back.apply(pts);  // and back, to the same millimetre
+  for (size_t i = 0; i < pts.size(); ++i) {
+    EXPECT_NEAR(pts[i].x, rd[i].x, 1e-3);
+    EXPECT_NEAR(pts[i].y, rd[i].y, 1e-3);
+  }
+  EXPECT_THROW(mc::io::Reprojector("EPSG:99999999", "EPSG:4326"), std::runtime_error);
+}
