@@ -2,6 +2,7 @@
 // CityJSON header, whatever the input format.
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ class FeatureSource {
   virtual const std::vector<std::string>& problems() const = 0;
   // "CityJSON", "CityJSONSeq", "CityGML 1.0", "CityGML 2.0", "CityGML 3.0".
   virtual std::string format() const = 0;
+  // How many features next() hands out, when the source knows it before reading them (a
+  // progress estimate); nullopt when it does not.
+  virtual std::optional<size_t> building_count() const { return std::nullopt; }
 };
 
 // True for the CityGML extensions: .gml, .xml and their gzip-compressed forms (.gml.gz, .xml.gz).
