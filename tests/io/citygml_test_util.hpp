@@ -1,6 +1,7 @@
 // Shared helpers of the CityGML reader tests: a whole read, the small files under
 // tests/io/data/citygml, and a file's coordinates ring by ring.
 #pragma once
+#include <fstream>
 #include <optional>
 
 #include "io/citygml_reader.hpp"
@@ -26,6 +27,17 @@ inline GmlRead read_gml(const std::string& path) {
   out.skipped = r.skipped_objects();
   return out;
 }
+
+// Tests that write small CityGML files into a scratch directory.
+class GmlFileTest : public ::testing::Test {
+ protected:
+  std::string write(const std::string& name, const std::string& xml) {
+    const std::string p = dir_.file(name);
+    std::ofstream(p) << xml;
+    return p;
+  }
+  ScratchDir dir_;
+};
 
 // A small hand-written file of tests/io/data/citygml (its README says what each shows).
 inline std::string gml_test_data(const std::string& name) {

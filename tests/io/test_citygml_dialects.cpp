@@ -3,8 +3,6 @@
 // surfaces, srsName only on buildings or geometries, or nowhere.
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include "tests/io/citygml_test_util.hpp"
 
 namespace mc::io::test {
@@ -12,15 +10,7 @@ namespace {
 
 using nlohmann::json;
 
-class CityGmlDialects : public ::testing::Test {
- protected:
-  std::string write(const std::string& name, const std::string& xml) {
-    const std::string p = dir_.file(name);
-    std::ofstream(p) << xml;
-    return p;
-  }
-  ScratchDir dir_;
-};
+class CityGmlDialects : public GmlFileTest {};
 
 bool has_problem(const GmlRead& r, const std::string& text) {
   for (const auto& p : r.problems)

@@ -219,15 +219,7 @@ TEST(CityGmlReader, BerlinV10RealBuildingsWithHoles) {
 
 // ---- synthetic edge cases ----
 
-class CityGmlSynthetic : public ::testing::Test {
- protected:
-  std::string write(const std::string& name, const std::string& xml) {
-    const std::string p = dir_.file(name);
-    std::ofstream(p) << xml;
-    return p;
-  }
-  ScratchDir dir_;
-};
+class CityGmlSynthetic : public GmlFileTest {};
 
 const char* kHead2 = R"(<?xml version="1.0" encoding="UTF-8"?>
 <core:CityModel xmlns:core="http://www.opengis.net/citygml/2.0" xmlns:b="http://www.opengis.net/citygml/building/2.0"
