@@ -140,7 +140,8 @@ struct LodContent {
 
 class Converter {
  public:
-  Converter(const xmlNode* building, std::string id) : id_(std::move(id)), geo_(building) {}
+  Converter(const xmlNode* building, std::string id, const RemoteGeometry* remote)
+      : id_(std::move(id)), geo_(building, remote) {}
 
   ConvertedBuilding run(const xmlNode* building) {
     ConvertedBuilding out;
@@ -159,6 +160,8 @@ class Converter {
     f.problems = std::move(problems);
     f.vertices = std::move(geo_.vertices());
     out.srs_name = geo_.srs_name();
+    out.srs_names = geo_.srs_names();
+    out.ade = std::move(ade_);
     return out;
   }
 
@@ -181,7 +184,10 @@ class Converter {
         generic_attribute(c, attrs);
         continue;
       }
-      if (!is_citygml_ns(uri)) continue;  // ADEs
+      if (!is_citygml_ns(uri)) {
+        ade_.add(qualified_name(c), uri);  // an ADE property (or an unqualified element): not read
+        continue;
+      }
       if (auto [lod, kind] = lod_property(name); lod >= 0) {
         if (kind == "Solid" || kind == "MultiSurface" || kind == "Geometry" || kind == "FootPrint" ||
             kind == "RoofEdge") {
@@ -204,6 +210,9 @@ class Converter {
         }
         object(p, "BuildingPart", pid, id, f);
         children.push_back(pid);
+      } else if (name.rfind("adeOf", 0) == 0) {  // CityGML 3.0's hook for ADE properties
+        for (const xmlNode* a = first_child(c); a; a = next_sibling(a))
+          if (!is_citygml_ns(ns_uri(a))) ade_.add(qualified_name(a), ns_uri(a));
       } else if (!first_child(c) && href(c).empty()) {
         add_attribute(attrs, std::string(name), typed(name, trim(text(c))));
       }
@@ -225,6 +234,10 @@ class Converter {
     const std::optional<std::string> type = semantic_type(local(el));
     for (const xmlNode* c = first_child(el); c; c = next_sibling(c)) {
       const std::string_view name = local(c);
+      if (is_ade_ns(ns_uri(c))) {
+        ade_.add(qualified_name(c), ns_uri(c));
+        continue;
+      }
       if (auto [lod, kind] = lod_property(name); lod >= 0 && (kind == "MultiSurface" || kind == "Geometry")) {
         for (auto& p : geo_.read_surfaces(c)) lods[lod].boundary.push_back({std::move(p), type});
       } else if (name == "opening" || name == "fillingSurface") {
@@ -334,14 +347,16 @@ class Converter {
   std::string id_;
   GeometryReader geo_;
   std::vector<std::string> notes_;
+  AdeTally ade_;
 };
 
 }  // namespace
 
-ConvertedBuilding convert_building(const xmlNode* building, const std::string& fallback_id) {
+ConvertedBuilding convert_building(const xmlNode* building, const std::string& fallback_id,
+                                   const RemoteGeometry* remote) {
   std::string id = gml_id(building);
   if (id.empty()) id = fallback_id;
-  return Converter(building, id).run(building);
+  return Converter(building, id, remote).run(building);
 }
 
 }  // namespace mc::io::citygml

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "io/citygml_remote.hpp"
 #include "io/citygml_xml.hpp"
 
 namespace mc::io::citygml {
@@ -18,6 +19,7 @@ namespace {
 // Deeper nesting than any sane geometry means an xlink cycle (a surface referring to itself).
 constexpr int kMaxDepth = 32;
 constexpr size_t kMaxNotes = 10;
+constexpr size_t kMaxSrsNames = 8;  // enough to tell that a building's geometries disagree
 
 // Whitespace- (or `sep`-) separated numbers; false on the first token that is not a finite number.
 bool parse_numbers(std::string_view s, std::vector<double>& out, std::string& bad, char sep = 0) {
@@ -52,14 +54,20 @@ size_t GeometryReader::KeyHash::operator()(const Key& k) const {
   return h(k.x) ^ (h(k.y) * 0x9e3779b97f4a7c15ULL) ^ (h(k.z) * 0xc2b2ae3d27d4eb4fULL);
 }
 
-GeometryReader::GeometryReader(const xmlNode* building) : root_(building) {
+GeometryReader::GeometryReader(const xmlNode* building, const RemoteGeometry* remote)
+    : root_(building), remote_(remote) {
   // Iterative walk: buildings can be deep, and the stack of the reader thread is not ours.
   std::vector<const xmlNode*> stack{building};
   while (!stack.empty()) {
     const xmlNode* n = stack.back();
     stack.pop_back();
     if (std::string id = gml_id(n); !id.empty()) by_id_.emplace(std::move(id), n);
-    if (srs_name_.empty()) srs_name_ = attr(n, "srsName");
+    if (std::string srs = attr(n, "srsName"); !srs.empty()) {
+      if (srs_name_.empty()) srs_name_ = srs;
+      if (srs_names_.size() < kMaxSrsNames &&
+          std::find(srs_names_.begin(), srs_names_.end(), srs) == srs_names_.end())
+        srs_names_.push_back(std::move(srs));
+    }
     // Children pushed in reverse: the first srsName in document order wins.
     std::vector<const xmlNode*> kids;
     for (const xmlNode* c = first_child(n); c; c = next_sibling(c)) kids.push_back(c);
@@ -78,10 +86,25 @@ const xmlNode* GeometryReader::content(const xmlNode* property) {
   const std::string ref = href(property);
   if (ref.empty()) return first_child(property);
   if (ref[0] == '#') {
-    auto it = by_id_.find(ref.substr(1));
+    const std::string id = ref.substr(1);
+    auto it = by_id_.find(id);
     if (it != by_id_.end()) return it->second;
+    if (remote_) {
+      if (const xmlNode* n = remote_->find(id)) return n;
+      if (remote_->dropped(id)) {
+        note(
+            "xlink:href \"" + ref +
+            "\" names geometry outside this building that is not stored (the store of such targets is full); "
+            "that surface is missing");
+        return nullptr;
+      }
+    }
+    note("xlink:href \"" + ref +
+         "\" names no element of this building and no GML geometry elsewhere in the file; that surface is "
+         "missing");
+    return nullptr;
   }
-  note("xlink:href \"" + ref + "\" does not name an element of this building; that surface is missing");
+  note("xlink:href \"" + ref + "\" refers outside this file; that surface is missing");
   return nullptr;
 }
 

@@ -1,6 +1,7 @@
 // GML geometry of one CityGML building (an expanded XML subtree) into indexed polygons.
-// xlink:href="#id" references are resolved inside the building; coordinates are pooled so that
-// equal points share one vertex.
+// xlink:href="#id" references are resolved inside the building, else among the geometry copied
+// from elsewhere in the file (RemoteGeometry); coordinates are pooled so that equal points share
+// one vertex.
 #pragma once
 #include <libxml/tree.h>
 
@@ -13,6 +14,8 @@
 #include "core/vec3.hpp"
 
 namespace mc::io::citygml {
+
+class RemoteGeometry;
 
 struct Polygon {
   std::vector<std::vector<uint32_t>> rings;  // exterior first, no repeated closing point
@@ -33,8 +36,9 @@ struct Geometry {
 
 class GeometryReader {
  public:
-  // Indexes every gml:id below `building` (the scope of xlinks) and notes the first srsName.
-  explicit GeometryReader(const xmlNode* building);
+  // Indexes every gml:id below `building` (the first scope of xlinks) and notes its srsNames.
+  // `remote` (may be null) resolves xlinks to geometry outside the building.
+  explicit GeometryReader(const xmlNode* building, const RemoteGeometry* remote = nullptr);
 
   // The content of a geometry property (lod2Solid, lod2MultiSurface, ...), following xlink:href.
   // nullopt when it holds nothing usable (the reason is in notes() or fatal()).
@@ -49,6 +53,8 @@ class GeometryReader {
   const std::string& fatal() const { return fatal_; }
   std::vector<std::string>& notes() { return notes_; }
   const std::string& srs_name() const { return srs_name_; }
+  // The distinct srsNames on the building and its geometry, in document order (at most 8).
+  const std::vector<std::string>& srs_names() const { return srs_names_; }
 
  private:
   void surfaces(const xmlNode* el, bool flip, std::vector<Polygon>& out, int depth);
@@ -72,11 +78,12 @@ class GeometryReader {
   };
 
   const xmlNode* root_;
+  const RemoteGeometry* remote_;
   std::unordered_map<std::string, const xmlNode*> by_id_;
   std::unordered_map<Key, uint32_t, KeyHash> pool_;
   std::vector<mc::Vec3> vertices_;
   std::string fatal_, srs_name_;
-  std::vector<std::string> notes_;
+  std::vector<std::string> notes_, srs_names_;
 };
 
 }  // namespace mc::io::citygml

@@ -4,6 +4,7 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,8 +14,10 @@ namespace mc::io {
 
 class CityGmlReader : public FeatureSource {
  public:
-  // Reads up to the first building to fill the header (CRS, transform). Throws ReadError when the
-  // file cannot be opened, is not well-formed XML, or its root is not a CityGML CityModel.
+  // Reads the file once quickly (citygml_prescan: the building count, xlinks between buildings;
+  // a second time only when there are such xlinks), then up to the first building to fill the
+  // header (CRS, transform). Throws ReadError when the file cannot be opened, is not well-formed
+  // XML (or declares entities), or its root is not a CityGML CityModel.
   explicit CityGmlReader(const std::string& path);
   ~CityGmlReader() override;
   CityGmlReader(const CityGmlReader&) = delete;
@@ -28,6 +31,9 @@ class CityGmlReader : public FeatureSource {
   // After the end: how many city objects of other types were skipped, srsName disagreements, ...
   const std::vector<std::string>& problems() const override;
   std::string format() const override;  // "CityGML 1.0", "CityGML 2.0" or "CityGML 3.0"
+  // The number of buildings next() hands out, from the first pass; nullopt when that pass met an
+  // XML error (then next() throws at it).
+  std::optional<size_t> feature_count() const override;
 
   // City objects that are not buildings (skipped), by element name; complete at the end.
   const std::map<std::string, size_t>& skipped_objects() const;

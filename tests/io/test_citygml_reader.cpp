@@ -14,30 +14,12 @@
 #include "io/citygml_crs.hpp"
 #include "io/citygml_reader.hpp"
 #include "io/feature_source.hpp"
-#include "tests/io/io_test_util.hpp"
+#include "tests/io/citygml_test_util.hpp"
 
 namespace mc::io::test {
 namespace {
 
 using nlohmann::json;
-
-struct GmlRead {
-  Header header;
-  std::vector<Feature> features;
-  std::vector<std::string> problems;
-  std::string format;
-  std::map<std::string, size_t> skipped;
-};
-
-GmlRead read_gml(const std::string& path) {
-  CityGmlReader r(path);
-  GmlRead out{r.header(), {}, {}, r.format(), {}};
-  Feature f;
-  while (r.next(f)) out.features.push_back(std::move(f));
-  out.problems = r.problems();
-  out.skipped = r.skipped_objects();
-  return out;
-}
 
 std::string citygml_file(const std::string& name) {
   const std::string local = project_data("citygml/" + name);
@@ -237,15 +219,7 @@ TEST(CityGmlReader, BerlinV10RealBuildingsWithHoles) {
 
 // ---- synthetic edge cases ----
 
-class CityGmlSynthetic : public ::testing::Test {
- protected:
-  std::string write(const std::string& name, const std::string& xml) {
-    const std::string p = dir_.file(name);
-    std::ofstream(p) << xml;
-    return p;
-  }
-  ScratchDir dir_;
-};
+class CityGmlSynthetic : public GmlFileTest {};
 
 const char* kHead2 = R"(<?xml version="1.0" encoding="UTF-8"?>
 <core:CityModel xmlns:core="http://www.opengis.net/citygml/2.0" xmlns:b="http://www.opengis.net/citygml/building/2.0"
