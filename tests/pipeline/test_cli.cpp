@@ -189,5 +189,27 @@ void interrupt_midway(int sig) {
 TEST(Cli, SigintStopsCleanlyWithExit130) { interrupt_midway(SIGINT); }
 TEST(Cli, SigtermStopsCleanlyWithExit143) { interrupt_midway(SIGTERM); }
 
+// On a terminal the progress line shows done/total and an ETA whenever the reader knows how many
+// features come: CityJSON (the document's first pass), CityJSONSeq (lines counted) and CityGML
+// (its first pass). `script` gives the run a pseudo-terminal.
+TEST(Cli, ProgressOnATerminalShowsTheTotalAndAnEta) {
+  if (run_command("command -v script").exit_code != 0) GTEST_SKIP() << "script (bsdutils) not installed";
+  TempDir dir("progress_tty");
+  const std::string gml = std::string(MC_SOURCE_DIR) + "/../shared/datasets/citygml/LOD2_Buildings_v200.gml";
+  std::vector<std::pair<std::string, std::string>> inputs = {
+      {data_file("3dbag/3dbag_5910.city.json"), "/432 features"},
+      {data_file("cjseq/3dbag_b2.city.jsonl"), "/2 features"}};
+  if (fs::exists(gml)) inputs.push_back({gml, "/100 features"});
+  for (const auto& [input, total] : inputs) {
+    if (input.empty()) continue;
+    SCOPED_TRACE(input);
+    const std::string cmd = cli_path() + " '" + input + "' --lod 9 --threads 2 --no-html -o '" + dir / "out" +
+                            (input.ends_with(".jsonl") ? ".city.jsonl" : ".city.json") + "'";
+    const ProcessResult r = run_command("script -qec \"" + cmd + "\" /dev/null");
+    EXPECT_NE(r.output.find(total), std::string::npos) << r.output.substr(0, 2000);
+    EXPECT_NE(r.output.find("ETA"), std::string::npos) << r.output.substr(0, 2000);
+  }
+}
+
 }  // namespace
 }  // namespace mc::test
