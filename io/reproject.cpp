@@ -83,11 +83,12 @@ std::string reference_system_url(const std::string& crs) {
 }
 
 ReprojectedSource::ReprojectedSource(std::unique_ptr<FeatureSource> in, const std::string& to,
-                                     std::optional<double> scale)
+                                     std::optional<double> scale, const std::string& from)
     : in_(std::move(in)), header_(in_->header()) {
+  if (!from.empty()) header_.crs = from;
   if (header_.crs.empty())
     throw std::runtime_error(
-        "the input has no CRS (metadata.referenceSystem / srsName): nothing to reproject from");
+        "the input has no CRS (metadata.referenceSystem / srsName): name it with --from to reproject");
   proj_ = std::make_unique<Reprojector>(header_.crs, to);
   std::string note;
   const CoordinateSystem cs = coordinate_system(to, false, &note);

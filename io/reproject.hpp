@@ -41,8 +41,9 @@ std::string reference_system_url(const std::string& crs);
 // vertices are transformed as it is read.
 class ReprojectedSource : public FeatureSource {
  public:
+  // `from` overrides the input's CRS (for a file that lost it); empty = the input's own.
   ReprojectedSource(std::unique_ptr<FeatureSource> in, const std::string& to,
-                    std::optional<double> scale = std::nullopt);
+                    std::optional<double> scale = std::nullopt, const std::string& from = "");
   const Header& header() const override { return header_; }
   bool next(Feature& out) override;
   const std::vector<std::string>& problems() const override { return in_->problems(); }

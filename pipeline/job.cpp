@@ -142,7 +142,7 @@ struct EncodedLevel {
 EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
                           const std::vector<PartResult>& parts, const Preprocessed& pre,
                           const std::string& lod, const std::string& version, VertexPool& pool,
-                          bool conforming) {
+                          bool conforming, bool separate = false) {
   EncodedLevel e;
   e.lv.index = i;
   e.lv.threshold = threshold;
@@ -156,6 +156,7 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   if (conforming) meshes = level_part_meshes(pre, parts);
   else
     for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
+  if (separate) separate_near_touches(meshes, pool.step());
   std::vector<EncodedSolid> solids;
   for (size_t j = 0; j < parts.size(); ++j) {
     solids.push_back(encode_solid(meshes[j], lod, version, pool));
@@ -281,6 +282,15 @@ EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double 
         return e;
       }
     }
+  // Vertices a fraction of a step from a face of their part moved away from it (part_merge.hpp).
+  pool.rollback(mark);
+  e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true, /*separate=*/true);
+  spent += e.check_seconds;
+  e.check_seconds = spent;
+  if (e.defect.empty()) {
+    e.grid_repair = "separated";
+    return e;
+  }
   pool.rollback(mark);
   e = encode_level(building, i, threshold, parts, pre, lod, version, pool, false);
   e.check_seconds += spent;
@@ -397,7 +407,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
   t = Clock::now();
   const std::string lod = in.lod.empty() ? std::string("2") : in.lod;
   std::vector<Vec3> new_vertices;
-  VertexPool pool(new_vertices, transform, frame);
+  VertexPool pool(new_vertices, transform, frame, p.pre.output_grid);
   std::vector<StagedPart> staged;
   std::vector<PolygonMesh> first_level_meshes;
   const std::vector<PartResult> singleton = singleton_parts(pre);

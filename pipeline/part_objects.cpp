@@ -98,7 +98,7 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
   }
   const auto t0 = std::chrono::steady_clock::now();
   const size_t bent = triangulate_bent_shared_faces(faces, pool.vertices());
-  PartRepair checked = check_and_repair(std::move(faces), pool.vertices());
+  PartRepair checked = check_and_repair(std::move(faces), pool.vertices(), pool.step());
   out.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.defect = std::move(checked.defect);
   out.repaired = checked.repaired;

@@ -27,8 +27,10 @@ namespace mc::pipeline {
 // metres). For a metric file both are the same vector.
 class VertexPool {
  public:
-  VertexPool(std::vector<Vec3>& out, const mc::io::Transform& t, const WorkingFrame& frame = {})
-      : out_(out), t_(t), frame_(frame) {
+  // `step`: the grid's step near the building in metres (the repairs' scale; 0 = unknown).
+  VertexPool(std::vector<Vec3>& out, const mc::io::Transform& t, const WorkingFrame& frame = {},
+             double step = 0)
+      : out_(out), t_(t), frame_(frame), step_(step) {
     if (!frame_.identity())
       for (const Vec3& v : out_) metric_.push_back(frame_.to_metric(v));
   }
@@ -42,12 +44,14 @@ class VertexPool {
   bool can_cluster() const { return t_.present; }
   // The snapped vertices in the metric frame (what the checks read).
   const std::vector<Vec3>& vertices() const { return frame_.identity() ? out_ : metric_; }
+  double step() const { return step_; }
 
  private:
   std::vector<Vec3>& out_;
   std::vector<Vec3> metric_;  // out_ in the working frame, unless the frame is the identity
   mc::io::Transform t_;
   WorkingFrame frame_;
+  double step_ = 0;
   std::map<std::tuple<int64_t, int64_t, int64_t>, int64_t> index_;
   int cluster_ = 0;
   size_t cluster_from_ = 0;

@@ -119,6 +119,55 @@ std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>&
   return out;
 }
 
+// A ring passing within `tol` of one of its own vertices (not at that vertex's edges) gets the
+// vertex inserted there: the ring then visits it twice, and split_touching cuts it into its lobes.
+// A face of two lobes joined by a neck thinner than the grid (a kept corner a fraction of a
+// millimetre from the face's own straight edge) otherwise folds across the neck when rounded.
+bool pinch_ring(std::vector<int64_t>& ring, const std::vector<Vec3>& pool, double tol) {
+  bool changed = false;
+  for (size_t guard = 0; guard < ring.size() * 2; ++guard) {
+    bool inserted = false;
+    const size_t n = ring.size();
+    for (size_t e = 0; e < n && !inserted; ++e) {
+      const int64_t a = ring[e], b = ring[(e + 1) % n];
+      const Vec3 &pa = pool[a], &pb = pool[b];
+      const Vec3 ab = pb - pa;
+      const double len2 = dot(ab, ab);
+      if (!(len2 > 0)) continue;
+      for (size_t k = 0; k < n; ++k) {
+        const int64_t v = ring[k];
+        if (v == a || v == b) continue;
+        const double t = dot(pool[v] - pa, ab) / len2;
+        if (t <= 0 || t >= 1) continue;
+        if (norm(pool[v] - (pa + ab * t)) >= tol) continue;
+        ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(e) + 1, v);
+        inserted = changed = true;
+        break;
+      }
+    }
+    if (!inserted) break;
+  }
+  return changed;
+}
+
+// Every face with a ring pinched by pinch_ring, cut into its lobes. True when a face changed.
+bool split_necks(std::vector<GridFace>& faces, const std::vector<Vec3>& pool, double tol) {
+  bool changed = false;
+  std::vector<GridFace> out;
+  for (GridFace& f : faces) {
+    bool pinched = false;
+    for (auto& ring : f.rings) pinched |= pinch_ring(ring, pool, tol);
+    if (!pinched) {
+      out.push_back(std::move(f));
+      continue;
+    }
+    changed = true;
+    for (GridFace& g : split_touching(f, pool)) out.push_back(std::move(g));
+  }
+  faces = std::move(out);
+  return changed;
+}
+
 // Repair 2: the face as triangles (each a face of its own), canonically, so that a face two
 // parts share gets the same triangles in both. Empty when its rings cross each other.
 std::vector<GridFace> triangles_of(const GridFace& f, const std::vector<Vec3>& pool) {
@@ -415,7 +464,7 @@ void repair_faces(PartRepair& r, SolidCheck& c, const std::vector<Vec3>& pool) {
 
 }  // namespace
 
-PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool) {
+PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool, double step) {
   PartRepair r;
   r.faces = std::move(faces);
   SolidCheck c;
@@ -427,14 +476,26 @@ PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>
   // Repair 0, when the face repairs alone leave the part invalid: the shell closed on the grid
   // first (rings cleaned as val3dity merges their vertices, T-junctions filled), then the face
   // repairs again.
-  if (!close_on_grid(original, pool, val3dity_tolerances().snap)) return r;
-  PartRepair closed;
-  closed.faces = std::move(original);
-  closed.repaired = true;
-  SolidCheck cc;
-  closed.defect = grid_solid_defect(closed.faces, pool, &cc);
-  repair_faces(closed, cc, pool);
-  if (closed.defect.empty()) return closed;
+  std::vector<GridFace> necked = original;
+  if (close_on_grid(original, pool, val3dity_tolerances().snap)) {
+    PartRepair closed;
+    closed.faces = std::move(original);
+    closed.repaired = true;
+    SolidCheck cc;
+    closed.defect = grid_solid_defect(closed.faces, pool, &cc);
+    repair_faces(closed, cc, pool);
+    if (closed.defect.empty()) return closed;
+  }
+  // Then faces whose ring comes within a grid step of itself, cut into their lobes (docs/
+  // output-format.md §Repairs), and repairs 1 and 2 again.
+  if (!split_necks(necked, pool, std::max(step, val3dity_tolerances().snap) * 1.5)) return r;
+  PartRepair cut;
+  cut.faces = std::move(necked);
+  cut.repaired = true;
+  SolidCheck nc;
+  cut.defect = grid_solid_defect(cut.faces, pool, &nc);
+  repair_faces(cut, nc, pool);
+  if (cut.defect.empty()) return cut;
   return r;
 }
 

@@ -26,8 +26,9 @@ struct PartRepair {
   std::string defect;  // empty = passes val3dity's rules at its default tolerances
 };
 
-// `pool` holds the coordinates of the ids in `faces`.
-PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool);
+// `pool` holds the coordinates of the ids in `faces`; `step` is the grid's step in the same units
+// (0 when unknown: val3dity's snap distance stands in).
+PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool, double step = 0);
 
 // A face shared with another part that is no longer exactly planar on the grid is written as
 // triangles, the same ones in both parts (canonical triangulation), so that the two surfaces

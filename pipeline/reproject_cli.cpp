@@ -19,11 +19,12 @@ namespace mc::pipeline {
 int reproject_main(int argc, char** argv) {
   CLI::App app{"morphcut-city reproject - write a city (CityJSON, CityJSONSeq or CityGML) in another CRS",
                "morphcut-city reproject"};
-  std::string input, output, to;
+  std::string input, output, to, from;
   double scale = 0;
   app.add_option("INPUT", input, "input city (any format morphcut-city reads)")->required();
   app.add_option("-o,--output", output, "output CityJSON (.jsonl: CityJSONSeq)")->required();
   app.add_option("--to", to, "target CRS, e.g. EPSG:32631 or EPSG:4979")->required();
+  app.add_option("--from", from, "the input's CRS, when the file does not say it (or says it wrongly)");
   app.add_option(
          "--scale", scale,
          "horizontal grid of the output transform (default 1e-8 for degrees, 0.001 for metres); heights "
@@ -36,7 +37,7 @@ int reproject_main(int argc, char** argv) {
   if (const auto code = parse_or_exit(app, argc, argv)) return *code;
   try {
     mc::io::ReprojectedSource src(mc::io::open_feature_source(input), to,
-                                  scale > 0 ? std::optional<double>(scale) : std::nullopt);
+                                  scale > 0 ? std::optional<double>(scale) : std::nullopt, from);
     mc::io::CityJsonWriter writer(output, src.header());
     mc::io::Feature f;
     size_t n = 0;

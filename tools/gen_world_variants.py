@@ -2,7 +2,7 @@
 """Derives test data for inputs from the rest of the world from the public CityJSON files: the same
 buildings in geographic coordinates, and stress variants for the output grid.
 
-usage: tools/gen_world_variants.py geographic IN.city.json OUT_DIR [--bin morphcut-city]
+usage: tools/gen_world_variants.py geographic IN.city.json OUT_DIR [--bin morphcut-city] [--from EPSG:n]
        tools/gen_world_variants.py stress IN.city.json OUT_DIR [--seed S]
        tools/gen_world_variants.py plateau IN.city.json OUT.gml [--bin morphcut-city] [--count N]
 
@@ -114,8 +114,8 @@ def geographic(args):
     os.makedirs(args.out, exist_ok=True)
     for code in ("4979", "6697"):
         path = os.path.join(args.out, f"{name}.epsg{code}.city.json")
-        subprocess.run([args.bin, "reproject", args.input, "-o", path, "--to", f"EPSG:{code}", "--scale", "1e-9"],
-                       check=True, stderr=subprocess.DEVNULL)
+        subprocess.run([args.bin, "reproject", args.input, "-o", path, "--to", f"EPSG:{code}", "--scale", "1e-9"] +
+                       (["--from", args.source_crs] if args.source_crs else []), check=True, stderr=subprocess.DEVNULL)
         print(path)
 
 
@@ -220,6 +220,8 @@ def main():
     ap.add_argument("--bin", default=os.path.join(ROOT, "build", "tools", "morphcut-city"))
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--count", type=int, default=12)
+    ap.add_argument("--from", dest="source_crs", default="",
+                    help="the input's CRS when the file does not say it (cjio's rotterdam_subset: EPSG:7415)")
     args = ap.parse_args()
     {"geographic": geographic, "stress": stress, "plateau": plateau}[args.mode](args)
 

@@ -87,7 +87,8 @@ TEST(WorkingFrame, AVolumeIsTheSameInDegreesAsInMetres) {
   GeographicLib::Geodesic::WGS84().Direct(lat, lon, 90, 20, lat_e, lon_e);
   const std::vector<Vec3> pts = {{lon, lat, 0}, {lon_e, lat_n, 6}};
   const WorkingFrame f(geographic(), pts);
-  const Vec3 a = f.to_metric({lon, lat, 0}), b = f.to_metric({lon_e, lat, 0}), c = f.to_metric({lon, lat_n, 0});
+  const Vec3 a = f.to_metric({lon, lat, 0}), b = f.to_metric({lon_e, lat, 0}),
+             c = f.to_metric({lon, lat_n, 0});
   EXPECT_NEAR(std::hypot(b.x - a.x, b.y - a.y), 20, 1e-6);
   EXPECT_NEAR(std::hypot(c.x - a.x, c.y - a.y), 10, 1e-6);
 }

@@ -31,8 +31,9 @@ struct RunOutput {
 
 RunOutput run(const std::string& input, const std::string& out, const std::string& extra = "") {
   const std::string report = out + ".report.json";
-  const ProcessResult r = run_command(cli_path() + " '" + input + "' -q --threads 2 -o '" + out + "' --report '" +
-                                      report + "' --no-summary --no-html --no-gpkg --no-graph " + extra);
+  const ProcessResult r =
+      run_command(cli_path() + " '" + input + "' -q --threads 2 -o '" + out + "' --report '" + report +
+                  "' --no-summary --no-html --no-gpkg --no-graph " + extra);
   EXPECT_LE(r.exit_code, 1) << r.output;
   RunOutput o;
   o.report = json::parse(slurp(report));
@@ -55,8 +56,8 @@ TEST(Coordinates, GeographicTwinOfTheTileDecomposesLikeTheOriginal) {
   TempDir dir("geographic_twin");
   const std::string original = first_features(tile, 60, dir / "subset.city.json");
   const std::string twin = dir / "subset.epsg4979.city.json";
-  const ProcessResult rp = run_command(cli_path() + " reproject '" + original + "' -o '" + twin +
-                                       "' --to EPSG:4979 --scale 1e-9");
+  const ProcessResult rp =
+      run_command(cli_path() + " reproject '" + original + "' -o '" + twin + "' --to EPSG:4979 --scale 1e-9");
   ASSERT_EQ(rp.exit_code, 0) << rp.output;
 
   const RunOutput a = run(original, dir / "a.city.json"), b = run(twin, dir / "b.city.json");
@@ -87,13 +88,15 @@ TEST(Coordinates, GeographicTwinOfTheTileDecomposesLikeTheOriginal) {
   EXPECT_EQ(city["metadata"]["referenceSystem"], "https://www.opengis.net/def/crs/EPSG/0/4979");
   EXPECT_EQ(city["transform"]["scale"][0].get<double>(), 1e-9);
   const json& t = city["transform"];
-  const double lon = city["vertices"][0][0].get<double>() * t["scale"][0].get<double>() + t["translate"][0].get<double>();
+  const double lon =
+      city["vertices"][0][0].get<double>() * t["scale"][0].get<double>() + t["translate"][0].get<double>();
   EXPECT_NEAR(lon, 4.36, 0.05);
   expect_valid_output(dir / "b.city.json");
   // A metric reprojection of the output (what val3dity can check) has valid parts too. Its part
   // volumes are UTM's (scale 0.9997 here), the cell volume attribute true metres: 701 is expected.
-  const ProcessResult back = run_command(cli_path() + " reproject '" + dir / "b.level-0.01.city.json" + "' -o '" +
-                                         dir / "b.utm.city.json" + "' --to EPSG:32631 --scale 1e-5");
+  const ProcessResult back =
+      run_command(cli_path() + " reproject '" + dir / "b.level-0.01.city.json" + "' -o '" +
+                  dir / "b.utm.city.json" + "' --to EPSG:32631 --scale 1e-5");
   ASSERT_EQ(back.exit_code, 0) << back.output;
   expect_valid_output(dir / "b.utm.city.json", 1, "701 PARTS_VOLUME_MISMATCH");
 }
@@ -102,9 +105,9 @@ TEST(Coordinates, PlateauLikeCityGmlInLatitudeFirstDegreesWithAnAde) {
   MC_REQUIRE_DATA(tile, "3dbag/3dbag_5910.city.json");
   TempDir dir("plateau_like");
   const std::string gml = dir / "plateau_like.gml";
-  const ProcessResult g = run_command("python3 '" + std::string(MC_SOURCE_DIR) +
-                                      "/tools/gen_world_variants.py' plateau '" + tile + "' '" + gml +
-                                      "' --count 8 --bin '" + cli_path() + "'");
+  const ProcessResult g =
+      run_command("python3 '" + std::string(MC_SOURCE_DIR) + "/tools/gen_world_variants.py' plateau '" +
+                  tile + "' '" + gml + "' --count 8 --bin '" + cli_path() + "'");
   ASSERT_EQ(g.exit_code, 0) << g.output;
   const RunOutput r = run(gml, dir / "p.city.json");
   ASSERT_EQ(r.buildings.size(), 8u);
@@ -132,8 +135,7 @@ TEST(Coordinates, CentimetreGridIsKeptAndPartsFitIt) {
   json city = json::parse(slurp(subset));
   const json t = city["transform"];
   for (auto& v : city["vertices"])
-    for (int k = 0; k < 3; ++k)
-      v[k] = std::llround(v[k].get<double>() * t["scale"][k].get<double>() / 0.01);
+    for (int k = 0; k < 3; ++k) v[k] = std::llround(v[k].get<double>() * t["scale"][k].get<double>() / 0.01);
   city["transform"]["scale"] = {0.01, 0.01, 0.01};
   std::ofstream(dir / "cm.city.json") << city.dump();
   const RunOutput r = run(dir / "cm.city.json", dir / "out.city.json");
@@ -158,16 +160,15 @@ TEST(Coordinates, OutputCrsReprojectsEveryOutput) {
   const json city = json::parse(slurp(dir / "u.city.json"));
   EXPECT_EQ(city["metadata"]["referenceSystem"], "https://www.opengis.net/def/crs/EPSG/0/32631");
   const json& t = city["transform"];
-  const double e = city["vertices"][0][0].get<double>() * t["scale"][0].get<double>() + t["translate"][0].get<double>();
+  const double e =
+      city["vertices"][0][0].get<double>() * t["scale"][0].get<double>() + t["translate"][0].get<double>();
   EXPECT_GT(e, 500000);  // UTM 31N eastings near Delft are ~590 km
   EXPECT_LT(e, 700000);
   for (const auto& [id, x] : a.buildings) {
     const json& y = u.buildings.at(id);
     EXPECT_EQ(x["status"], y["status"]) << id;
     // UTM's scale near Delft is 0.9997: volumes 0.06 % smaller than in RD New.
-    if (x["status"] == "ok") {
-      EXPECT_NEAR(cell_volume(y) / cell_volume(x), 0.9995, 0.002) << id;
-    }
+    if (x["status"] == "ok") { EXPECT_NEAR(cell_volume(y) / cell_volume(x), 0.9995, 0.002) << id; }
   }
   expect_valid_output(dir / "u.city.json");
 }
