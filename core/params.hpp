@@ -102,7 +102,7 @@ struct DecomposeParams {
   bool split_chains = true;
 };
 
-// Massing analytics of the written parts (pipeline/massing.hpp, docs/massing.md): contact
+// Massing analytics of the written parts (massing/massing.hpp, docs/massing.md): contact
 // kinds, part roles and building features. Lengths in model units, angles in degrees.
 struct MassingParams {
   double level = 0.01;            // the LoD level whose parts give the building features

@@ -13,11 +13,15 @@
 #include "io/cityjson_building.hpp"
 #include "io/cityjson_common.hpp"
 #include "io/errors.hpp"
+#include "output/level_views.hpp"
 #include "pipeline/cache_entry.hpp"
 #include "pipeline/job.hpp"
-#include "pipeline/sha256.hpp"
+#include "io/sha256.hpp"
 
 namespace mc::pipeline {
+using namespace mc::report;
+using namespace mc::massing;
+
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -151,7 +155,7 @@ void apply_entry(const json& payload, mc::io::Feature& f, BuildingOutcome& out) 
   out.size = staged.size;
   out.levels = std::move(staged.levels);
   out.measures = std::move(staged.measures);
-  out.massing = std::move(staged.massing);            // massing analytics (pipeline/massing.hpp)
+  out.massing = std::move(staged.massing);            // massing analytics (massing/massing.hpp)
   out.volume_check = std::move(staged.volume_check);  // the cell's volume check (docs/algorithm.md §6.5)
   out.hausdorff = staged.hausdorff;
   out.problems = std::move(staged.problems);
@@ -195,7 +199,7 @@ std::string BuildingCache::key_of(const mc::io::Feature& f) const {
     });
     canon.push_back(std::move(wrapper.begin().value()));
   }
-  Sha256 sha;
+  mc::io::Sha256 sha;
   sha.update(context_.data(), context_.size());
   const std::string text = canon.dump();
   sha.update(text.data(), text.size());
@@ -210,7 +214,7 @@ BuildingOutcome BuildingCache::run(mc::io::Feature&& f, const mc::io::Header& h,
                                    const RunConfig& rc) {
   if (!mc::io::is_building(f)) return run_building(std::move(f), h, p, rc);
   const auto start = SteadyClock::now();
-  strip_previous_parts(f);  // the key and the entry are about the input, not an earlier output
+  mc::output::strip_previous_parts(f);  // the key and the entry are about the input, not an earlier output
   const std::string key = key_of(f);
   const std::string path = entry_path(key);
 
@@ -226,7 +230,7 @@ BuildingOutcome BuildingCache::run(mc::io::Feature&& f, const mc::io::Header& h,
       if (head.at("format").get<int>() != kFormat) throw std::runtime_error("unknown format");
       if (head.at("key").get<std::string>() != key)
         throw std::runtime_error("key does not match the file name");
-      if (head.at("sha256").get<std::string>() != sha256_hex(body))
+      if (head.at("sha256").get<std::string>() != mc::io::sha256_hex(body))
         throw std::runtime_error("checksum mismatch");
       BuildingOutcome out;
       out.id = f.id;
@@ -254,7 +258,7 @@ BuildingOutcome BuildingCache::run(mc::io::Feature&& f, const mc::io::Header& h,
   }
   try {
     const std::string body = delta_of(out, base, children_before).dump();
-    const json head = {{"format", kFormat}, {"key", key}, {"sha256", sha256_hex(body)}};
+    const json head = {{"format", kFormat}, {"key", key}, {"sha256", mc::io::sha256_hex(body)}};
     fs::create_directories(fs::path(path).parent_path());
     mc::io::AtomicFile file(path);
     file.stream() << head.dump() << '\n' << body << '\n';

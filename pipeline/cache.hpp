@@ -24,9 +24,11 @@
 #include "core/params.hpp"
 #include "io/cityjson_common.hpp"
 #include "io/cityjson_types.hpp"
-#include "pipeline/outcome.hpp"
+#include "report/outcome.hpp"
 
 namespace mc::pipeline {
+
+using mc::report::BuildingOutcome;
 
 struct CacheStats {
   size_t hits = 0, misses = 0;

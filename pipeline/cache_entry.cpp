@@ -4,6 +4,9 @@
 #include <stdexcept>
 
 namespace mc::pipeline {
+using namespace mc::report;
+using namespace mc::massing;
+
 
 using nlohmann::json;
 

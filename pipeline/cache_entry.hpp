@@ -5,9 +5,11 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
-#include "pipeline/outcome.hpp"
+#include "report/outcome.hpp"
 
 namespace mc::pipeline {
+
+using mc::report::BuildingOutcome;
 
 nlohmann::json outcome_to_json(const BuildingOutcome& b);
 // Fills status, reason, lod, sizes, levels, measures, hausdorff and problems of `b`.

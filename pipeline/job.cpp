@@ -15,17 +15,21 @@
 #include "io/cityjson_building.hpp"
 #include "io/cityjson_common.hpp"
 #include "io/off_obj.hpp"
-#include "pipeline/level_views.hpp"
-#include "pipeline/massing.hpp"
+#include "output/level_views.hpp"
+#include "massing/massing.hpp"
 #include "pipeline/measures.hpp"
-#include "pipeline/output_grid.hpp"
-#include "pipeline/part_merge.hpp"
-#include "pipeline/part_objects.hpp"
-#include "pipeline/part_repair.hpp"
-#include "pipeline/rounding.hpp"
+#include "output/output_grid.hpp"
+#include "output/part_merge.hpp"
+#include "output/part_objects.hpp"
+#include "output/part_repair.hpp"
+#include "output/rounding.hpp"
 #include "pipeline/terrain.hpp"
 
 namespace mc::pipeline {
+using namespace mc::report;
+
+using namespace mc::massing;
+using namespace mc::output;
 
 using nlohmann::json;
 
@@ -135,7 +139,7 @@ struct EncodedLevel {
   double check_seconds = 0;
   std::string defect;    // non-empty: a part fails the checks, and nothing of the level is kept
   int failed_part = -1;  // the part the defect is on
-  // The parts actually encoded when slivers were merged into neighbours (pipeline/part_merge.hpp).
+  // The parts actually encoded when slivers were merged into neighbours (output/part_merge.hpp).
   std::optional<std::vector<PartResult>> merged;
 };
 
@@ -252,7 +256,7 @@ EncodedLevel relabelled(const EncodedLevel& previous, const std::string& buildin
 }
 
 // A level's parts encoded on the output grid, as meshes that fit their neighbours exactly
-// (level_part_meshes). When a part stays invalid after its own repairs (pipeline/part_repair.hpp):
+// (level_part_meshes). When a part stays invalid after its own repairs (output/part_repair.hpp):
 //   1. the level's vertices are clustered ever more coarsely (vertices within 1, 2, then 4 grid
 //      steps become one) and the whole level is encoded again, so that every part sharing a
 //      moved vertex moves with it;
@@ -305,7 +309,7 @@ EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double 
 }
 
 // encode_parts_on_grid, then, while a part still fails, that part merged into the neighbour it
-// shares the largest face with and the level encoded again (pipeline/part_merge.hpp): a level of
+// shares the largest face with and the level encoded again (output/part_merge.hpp): a level of
 // fewer parts rather than another level. On failure the first defect is reported.
 EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
                                   const std::vector<PartResult>& parts, const Preprocessed& pre,
@@ -479,7 +483,7 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
     lv.grid_repair = e.grid_repair;
     if (fallback.empty() && e.grid_repair.empty()) reusable.emplace(e, parts);
     else reusable.reset();
-    {  // massing analytics (pipeline/massing.hpp, docs/massing.md): roles and contacts as part attributes
+    {  // massing analytics (massing/massing.hpp, docs/massing.md): roles and contacts as part attributes
       const auto tm = Clock::now();
       const bool own = e.grid_repair == "non-conforming";  // those meshes carry no neighbours
       std::vector<PolygonMesh> own_meshes;
@@ -553,35 +557,6 @@ void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, c
 }
 
 }  // namespace
-
-size_t strip_previous_parts(mc::io::Feature& f) {
-  auto b = f.objects.find(f.id);
-  if (b == f.objects.end() || !b->is_object()) return 0;
-  size_t removed = 0;
-  if (auto ch = b->find("children"); ch != b->end() && ch->is_array()) {
-    json kept = json::array();
-    for (const auto& c : *ch) {
-      auto obj = c.is_string() ? f.objects.find(c.get<std::string>()) : f.objects.end();
-      const bool ours = obj != f.objects.end() && is_morphcut_part(*obj);
-      if (ours) {
-        f.objects.erase(obj);
-        ++removed;
-      } else {
-        kept.push_back(c);
-      }
-    }
-    *ch = std::move(kept);
-  }
-  if (auto a = b->find("attributes"); a != b->end() && a->is_object())
-    for (const char* k :
-         {"morphcut_status", "morphcut_reason", "morphcut_parts", "morphcut_levels", "morphcut_hausdorff",
-          "morphcut_cell_volume", "morphcut_level", "morphcut_volume_check"})
-      a->erase(k);
-  if (auto a = b->find("attributes"); a != b->end() && a->is_object())
-    for (const auto& k : building_attribute_names()) a->erase(k);
-  if (removed) compact_vertices(f);
-  return removed;
-}
 
 BuildingOutcome failed_building(mc::io::Feature&& f, const std::string& reason) {
   BuildingOutcome out;

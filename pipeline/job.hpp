@@ -6,12 +6,11 @@
 #include "config/run_config.hpp"
 #include "core/params.hpp"
 #include "io/cityjson_types.hpp"
-#include "pipeline/outcome.hpp"
+#include "report/outcome.hpp"
 
 namespace mc::pipeline {
 
-// Statuses, in report order.
-inline constexpr const char* kStatuses[] = {"ok", "partial", "failed", "skipped"};
+using mc::report::BuildingOutcome;
 
 // Non-building features come back untouched with is_building = false. A building comes back
 // with its BuildingParts (architecture.md §4) and morphcut_* attributes; when the job fails or
@@ -26,9 +25,5 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
 // run_building's own guard (the run's per-feature hook), so that the building is still written.
 BuildingOutcome failed_building(mc::io::Feature&& f, const std::string& reason);
 
-// Removes BuildingParts and attributes a previous morphcut run added, so that running on an
-// output is the same as running on its input (parts are recognised by `morphcut_level`).
-// Returns the number of objects removed.
-size_t strip_previous_parts(mc::io::Feature& f);
 
 }  // namespace mc::pipeline

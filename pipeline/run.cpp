@@ -33,15 +33,19 @@
 #include "pipeline/interrupt.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/job_cpu.hpp"
-#include "pipeline/level_views.hpp"
-#include "pipeline/output_grid.hpp"
+#include "output/level_views.hpp"
+#include "output/output_grid.hpp"
 #include "pipeline/progress.hpp"
-#include "pipeline/report.hpp"
-#include "pipeline/sha256.hpp"
-#include "pipeline/summary_csv.hpp"
-#include "pipeline/graph_export.hpp"
+#include "report/report.hpp"
+#include "io/sha256.hpp"
+#include "report/summary_csv.hpp"
+#include "report/graph_export.hpp"
 
 namespace mc::pipeline {
+using namespace mc::massing;
+
+using namespace mc::output;
+using namespace mc::report;
 
 using nlohmann::json;
 using SteadyClock = std::chrono::steady_clock;
@@ -186,7 +190,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
     hash = std::async(std::launch::async, [p = opt.input] {
       std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(p.c_str(), "rb"), &std::fclose);
       if (!f) return std::string();
-      Sha256 sha;
+      mc::io::Sha256 sha;
       std::vector<char> buf(1 << 20);
       size_t n;
       while ((n = std::fread(buf.data(), 1, buf.size(), f.get())) > 0) {
@@ -214,7 +218,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   const mc::io::CrsTransformer crs(header.crs);
 
   // All outputs are opened first, so a bad path fails before any work is done: the annotated
-  // input and one city per written level (pipeline/level_views.hpp, docs/output-format.md).
+  // input and one city per written level (output/level_views.hpp, docs/output-format.md).
   mc::io::CityJsonWriter writer(opt.output, header);
   std::vector<double> written_levels;
   for (size_t i = 0; i < params.dec.levels.size(); ++i)

@@ -25,7 +25,7 @@ struct RunOptions {
   std::string output;       // .jsonl = CityJSONSeq, else .city.json
   std::string report;       // empty = no run report
   std::string summary;      // empty = no summary CSV
-  std::string graph;        // part graphs, one building per line (pipeline/graph_export.hpp); empty = none
+  std::string graph;        // part graphs, one building per line (report/graph_export.hpp); empty = none
   std::string gpkg;         // GeoPackage of building and part footprints; empty = none
   std::string config_file;  // recorded in the report (empty = defaults)
   std::string cache_dir;    // per-building result cache (pipeline/cache.hpp); empty = none

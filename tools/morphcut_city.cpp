@@ -14,12 +14,12 @@
 
 #include "config/config.hpp"
 #include "io/errors.hpp"
-#include "pipeline/cli.hpp"
-#include "pipeline/html_report.hpp"
-#include "pipeline/graph_export.hpp"
+#include "tools/cli/cli.hpp"
+#include "report/html_report.hpp"
+#include "report/graph_export.hpp"
 #include "pipeline/progress.hpp"
 #include "pipeline/run.hpp"
-#include "pipeline/subcommands.hpp"
+#include "tools/cli/subcommands.hpp"
 
 namespace {
 
@@ -91,12 +91,12 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(logger);
   // Subcommands come first; anything else is an input path (a file named "validate" can be given
   // as ./validate).
-  if (argc > 1 && std::string(argv[1]) == "validate") return mc::pipeline::validate_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "validate") return mc::cli::validate_main(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "merge-reports")
-    return mc::pipeline::merge_reports_main(argc - 1, argv + 1);
-  if (argc > 1 && std::string(argv[1]) == "html") return mc::pipeline::html_main(argc - 1, argv + 1);
+    return mc::cli::merge_reports_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "html") return mc::cli::html_main(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "reproject")
-    return mc::pipeline::reproject_main(argc - 1, argv + 1);
+    return mc::cli::reproject_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
   std::string input, config_path, output, report, summary, lod, cache_dir, html, graph, gpkg, output_crs;
@@ -153,10 +153,10 @@ int main(int argc, char** argv) {
       "for A/B benchmarks)");
   app.set_version_flag("--version", MC_VERSION);
   app.footer(kFooter);
-  if (const auto code = mc::pipeline::parse_or_exit(app, argc, argv)) return *code;
+  if (const auto code = mc::cli::parse_or_exit(app, argc, argv)) return *code;
   if (!print_config && input_opt->count() == 0) {
     app.exit(CLI::RequiredError(input_opt->get_name()));
-    return mc::pipeline::kExitUsage;
+    return mc::cli::kExitUsage;
   }
 
   try {
@@ -182,8 +182,8 @@ int main(int argc, char** argv) {
     const std::string stem = !output.empty() ? output_stem(output) : stem_of(input);
     opt.report = no_report ? "" : (!report.empty() ? report : stem + ".morphcut.report.json");
     opt.summary = no_summary ? "" : (!summary.empty() ? summary : stem + ".morphcut.csv");
-    opt.graph = no_graph ? "" : (!graph.empty() ? graph : mc::pipeline::graph_path_for_stem(stem));
-    opt.gpkg = no_gpkg ? "" : (!gpkg.empty() ? gpkg : mc::pipeline::gpkg_path_for_stem(stem));
+    opt.graph = no_graph ? "" : (!graph.empty() ? graph : mc::report::graph_path_for_stem(stem));
+    opt.gpkg = no_gpkg ? "" : (!gpkg.empty() ? gpkg : mc::report::gpkg_path_for_stem(stem));
     opt.config_file = config_path;
     opt.cache_dir = cache_dir;
     opt.output_crs = output_crs;
@@ -214,11 +214,11 @@ int main(int argc, char** argv) {
     // The HTML page, from the outputs just written (timed: it should stay a few % of the run).
     if (!no_html) {
       const std::string page = !html.empty()         ? html
-                               : !opt.report.empty() ? mc::pipeline::html_path_for_report(opt.report)
+                               : !opt.report.empty() ? mc::report::html_path_for_report(opt.report)
                                                      : stem + ".morphcut.html";
       const auto t0 = std::chrono::steady_clock::now();
       try {
-        const mc::pipeline::HtmlReportResult h = mc::pipeline::write_html_report(
+        const mc::report::HtmlReportResult h = mc::report::write_html_report(
             opt.report,
             opt.report.empty() ? std::vector<std::string>{opt.output} : std::vector<std::string>{}, page);
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -240,5 +240,5 @@ int main(int argc, char** argv) {
   } catch (const mc::io::WriteError& e) {
     spdlog::error("cannot write output: {}", e.what());
   } catch (const std::exception& e) { spdlog::error("error: {}", e.what()); }
-  return mc::pipeline::kExitUsage;
+  return mc::cli::kExitUsage;
 }

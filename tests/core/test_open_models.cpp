@@ -22,7 +22,7 @@
 #include "io/cityjson_reader.hpp"
 #include "config/run_config.hpp"
 #include "pipeline/job.hpp"
-#include "pipeline/report.hpp"
+#include "report/report.hpp"
 
 namespace mc::test {
 namespace {
@@ -220,7 +220,7 @@ TEST(OpenModels, AFlaggedDisagreementReachesTheBuildingAndTheReport) {
       found = true;
     }
   EXPECT_TRUE(found);
-  const auto j = pipeline::building_report(b);
+  const auto j = report::building_report(b);
   ASSERT_TRUE(j.contains("volume_check"));
   EXPECT_TRUE(j["volume_check"]["flagged"].get<bool>());
   // With the default threshold the same building is not flagged.

@@ -6,10 +6,12 @@
 
 #include "config/config.hpp"
 #include "pipeline/job.hpp"
-#include "pipeline/massing.hpp"
+#include "massing/massing.hpp"
 #include "tests/core/synthetic_buildings.hpp"
 
 namespace mc::pipeline {
+using namespace mc::massing;
+using namespace mc::report;
 namespace {
 
 using mc::test::box;

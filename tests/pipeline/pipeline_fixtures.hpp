@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/config.hpp"
-#include "pipeline/validate.hpp"
+#include "output/validate.hpp"
 
 namespace mc::test {
 
@@ -186,7 +186,7 @@ inline std::string solid_defect(const json& geometry, const json& vertices) {
   return {};
 }
 
-// `morphcut-city validate` on an output (pipeline/validate.hpp): every part a valid Solid, parts
+// `morphcut-city validate` on an output (output/validate.hpp): every part a valid Solid, parts
 // of a level not overlapping and adding up to the cell volume, structure sound. Call it on every
 // output city a test produces: EXPECT-fails with the invalid objects' errors. `known_defect`: errors
 // containing this text are printed instead (an input with a documented, still open core defect;
@@ -199,7 +199,7 @@ inline void expect_valid_output(const std::string& path, size_t min_parts = 1,
   std::vector<std::string> files{path};
   for (const auto& lf : level_files(path)) files.push_back(lf);
   for (const auto& file : files) {
-    const auto s = mc::pipeline::validate_city(file, {}, [&](const mc::pipeline::ObjectReport& r) {
+    const auto s = mc::output::validate_city(file, {}, [&](const mc::output::ObjectReport& r) {
       for (const auto& e : r.errors) {
         const std::string line =
             r.id + ": " + std::to_string(e.code) + " " + e.name + ": " + e.message + "\n";

@@ -93,7 +93,7 @@ TEST(CityGmlRun, EveryBuildingOfTheSharedSamplesHasAStatusInACityJson20Output) {
     // Whether every decomposed part is a valid solid is core's matter (tests/core, test_schema);
     // defects there are printed, not failed on here.
     size_t invalid_parts = 0;
-    const auto v = mc::pipeline::validate_city(out, {}, [&](const mc::pipeline::ObjectReport& o) {
+    const auto v = mc::output::validate_city(out, {}, [&](const mc::output::ObjectReport& o) {
       const bool ours = o.id.find("-mc") != std::string::npos;
       if (!ours) {
         EXPECT_TRUE(o.valid()) << o.id << ": " << o.errors.front().name << ": " << o.errors.front().message;

@@ -6,6 +6,9 @@
 #include "pipeline_fixtures.hpp"
 
 namespace mc::pipeline {
+using namespace mc::massing;
+using namespace mc::output;
+using namespace mc::report;
 namespace {
 
 using mc::test::json;

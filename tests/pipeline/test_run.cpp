@@ -7,10 +7,13 @@
 #include "config/config.hpp"
 #include "io/cityjson.hpp"
 #include "pipeline/run.hpp"
-#include "pipeline/summary_csv.hpp"
+#include "report/summary_csv.hpp"
 #include "pipeline_fixtures.hpp"
 
 namespace mc::pipeline {
+using namespace mc::massing;
+using namespace mc::output;
+using namespace mc::report;
 namespace {
 
 using mc::test::json;

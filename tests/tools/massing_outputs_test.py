@@ -121,7 +121,7 @@ def main():
         parts = sum(len(n["nodes"]) for b in lines for n in b["levels"])
         if f"Feature Count: {parts}" not in text:
             fail(f"ogrinfo: parts layer should hold {parts} features:\n{text}")
-        # Part values are written rounded as in the CityJSON attributes (pipeline/rounding.hpp):
+        # Part values are written rounded as in the CityJSON attributes (output/rounding.hpp):
         # volumes to 1e-6 m³, convexities to 1e-9, so their last bits carry no noise.
         import sqlite3
         con = sqlite3.connect(gpkg_path)

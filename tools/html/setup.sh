@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# npm packages of the HTML report (pipeline/html_report.cpp), pinned, into build/node_tools/html:
+# npm packages of the HTML report (report/html_report.cpp), pinned, into build/node_tools/html:
 #   three            the page's 3D view; bundled by tools/html/bundle_three.mjs into one classic
 #                    script (three-bundle.js, MIT licence text kept) that CMake embeds into the
-#                    binary at build time (pipeline/html/assets.cmake)
+#                    binary at build time (report/html/assets.cmake)
 #   playwright-core  drives Debian's chromium in tests/tools/html_browser_test.mjs (no browser
 #                    download: it uses /usr/bin/chromium)
 # Idempotent and quiet when the pinned versions are present. Without npm, or when the registry

@@ -42,7 +42,7 @@ if [ -z "$bin" ] || [ ! -x "$bin" ]; then echo "process-tile: morphcut-city not 
 [ -r "$tile" ] || { echo "process-tile: cannot read tile $tile" >&2; exit 2; }
 log() { echo "$(date -u +%FT%TZ) process-tile [$(basename "$tile")]: $*" >&2; }
 
-# The stem rule of morphcut-city (tools/morphcut_city.cpp, pipeline/merge_reports.cpp).
+# The stem rule of morphcut-city (tools/morphcut_city.cpp, report/merge_reports.cpp).
 name="$(basename "$tile")"
 stem="$name"
 for ext in .city.jsonl .city.json .jsonl .json; do
