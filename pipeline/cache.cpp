@@ -22,7 +22,6 @@ namespace mc::pipeline {
 using namespace mc::report;
 using namespace mc::massing;
 
-
 using nlohmann::json;
 namespace fs = std::filesystem;
 using SteadyClock = std::chrono::steady_clock;

@@ -7,7 +7,6 @@ namespace mc::pipeline {
 using namespace mc::report;
 using namespace mc::massing;
 
-
 using nlohmann::json;
 
 namespace {

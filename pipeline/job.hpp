@@ -25,5 +25,4 @@ BuildingOutcome run_building(mc::io::Feature&& f, const mc::io::Header& h, const
 // run_building's own guard (the run's per-feature hook), so that the building is still written.
 BuildingOutcome failed_building(mc::io::Feature&& f, const std::string& reason);
 
-
 }  // namespace mc::pipeline

@@ -14,7 +14,7 @@
 #include "io/csv.hpp"
 #include "io/errors.hpp"
 #include "io/scratch_file.hpp"
-#include "pipeline/job.hpp"
+#include "report/outcome.hpp"
 #include "io/sha256.hpp"
 
 namespace mc::report {

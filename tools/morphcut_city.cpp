@@ -95,8 +95,7 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "merge-reports")
     return mc::cli::merge_reports_main(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "html") return mc::cli::html_main(argc - 1, argv + 1);
-  if (argc > 1 && std::string(argv[1]) == "reproject")
-    return mc::cli::reproject_main(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "reproject") return mc::cli::reproject_main(argc - 1, argv + 1);
   CLI::App app{"morphcut-city " MC_VERSION " - decompose every building of a CityJSON city into convex parts",
                "morphcut-city"};
   std::string input, config_path, output, report, summary, lod, cache_dir, html, graph, gpkg, output_crs;

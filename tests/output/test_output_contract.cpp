@@ -67,8 +67,10 @@ void expect_written_parts_valid(const mc::io::Feature& written) {
 }
 
 TEST(LevelViews, OutputPathsNameTheLevel) {
-  EXPECT_EQ(mc::output::level_output_path("out/x.morphcut.city.json", 0.01), "out/x.morphcut.level-0.01.city.json");
-  EXPECT_EQ(mc::output::level_output_path("x.morphcut.city.jsonl", 0.0001), "x.morphcut.level-0.0001.city.jsonl");
+  EXPECT_EQ(mc::output::level_output_path("out/x.morphcut.city.json", 0.01),
+            "out/x.morphcut.level-0.01.city.json");
+  EXPECT_EQ(mc::output::level_output_path("x.morphcut.city.jsonl", 0.0001),
+            "x.morphcut.level-0.0001.city.jsonl");
   EXPECT_EQ(mc::output::level_output_path("x.json", 0.1), "x.level-0.1.json");
   EXPECT_EQ(mc::output::level_output_path("x", 0.5), "x.level-0.5.city.json");
 }
@@ -213,7 +215,7 @@ TEST(PartRepair, BentFacesAreWrittenAsTriangles) {
   std::vector<Vec3> pool = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},   {0, 1, 0},
                             {0, 0, 1}, {1, 0, 1}, {1, 1, 1.1}, {0, 1, 1}};
   std::vector<mc::output::GridFace> cube = {{{{0, 3, 2, 1}}}, {{{4, 5, 6, 7}}}, {{{0, 1, 5, 4}}},
-                                {{{1, 2, 6, 5}}}, {{{2, 3, 7, 6}}}, {{{3, 0, 4, 7}}}};
+                                            {{{1, 2, 6, 5}}}, {{{2, 3, 7, 6}}}, {{{3, 0, 4, 7}}}};
   SolidCheck before;
   const std::string defect = mc::output::grid_solid_defect(cube, pool, &before);
   EXPECT_FALSE(defect.empty());
@@ -236,11 +238,12 @@ TEST(PartRepair, ARepairedPartsSharedFaceIsCopiedToItsNeighbour) {
       pool.push_back(p + Vec3{x, 0, 0});
   // Vertices 4 * i + (0: y0 z0, 1: y1 z0, 2: y1 z1, 3: y0 z1) at x = i.
   auto cube = [](int64_t a, int64_t b, int32_t left, int32_t right, bool split_right) {
-    std::vector<mc::output::GridFace> f = {{{{a + 0, a + 3, a + 2, a + 1}}, -1, left},  // x = a's plane, facing -x
-                               {{{a + 0, b + 0, b + 3, a + 3}}, -1, -1},    // y = 0
-                               {{{a + 1, a + 2, b + 2, b + 1}}, -1, -1},    // y = 1
-                               {{{a + 0, a + 1, b + 1, b + 0}}, -1, -1},    // z = 0
-                               {{{a + 3, b + 3, b + 2, a + 2}}, -1, -1}};   // z = 1
+    std::vector<mc::output::GridFace> f = {
+        {{{a + 0, a + 3, a + 2, a + 1}}, -1, left},  // x = a's plane, facing -x
+        {{{a + 0, b + 0, b + 3, a + 3}}, -1, -1},    // y = 0
+        {{{a + 1, a + 2, b + 2, b + 1}}, -1, -1},    // y = 1
+        {{{a + 0, a + 1, b + 1, b + 0}}, -1, -1},    // z = 0
+        {{{a + 3, b + 3, b + 2, a + 2}}, -1, -1}};   // z = 1
     if (split_right) {
       f.push_back({{{b + 0, b + 1, b + 2}}, -1, right});
       f.push_back({{{b + 0, b + 2, b + 3}}, -1, right});
@@ -276,16 +279,16 @@ TEST(PartRepair, SelfTouchingRingIsSplitIntoSimpleRings) {
                             {0, 0, 1},   {4, 0, 1},   {4, 4, 1},  {0, 4, 1}, {0, 2, 1},  // 4-7 top, 8 = v
                             {1, 1.5, 1}, {1, 2.5, 1},                                    // 9, 10 chimney base
                             {0, 2, 2},   {1, 1.5, 2}, {1, 2.5, 2}};                      // 11-13 chimney top
-  std::vector<mc::output::GridFace> solid = {{{{0, 3, 2, 1}}},                                       // ground
-                                 {{{0, 1, 5, 4}}},                                       // front wall
-                                 {{{1, 2, 6, 5}}},                                       // right wall
-                                 {{{2, 3, 7, 6}}},                                       // back wall
-                                 {{{3, 0, 4, 8, 7}}},            // left wall, v on its top edge
-                                 {{{4, 5, 6, 7, 8, 10, 9, 8}}},  // roof: one ring through v twice
-                                 {{{8, 9, 12, 11}}},             // chimney walls
-                                 {{{9, 10, 13, 12}}},
-                                 {{{10, 8, 11, 13}}},
-                                 {{{11, 12, 13}}}};  // chimney top
+  std::vector<mc::output::GridFace> solid = {{{{0, 3, 2, 1}}},                           // ground
+                                             {{{0, 1, 5, 4}}},                           // front wall
+                                             {{{1, 2, 6, 5}}},                           // right wall
+                                             {{{2, 3, 7, 6}}},                           // back wall
+                                             {{{3, 0, 4, 8, 7}}},            // left wall, v on its top edge
+                                             {{{4, 5, 6, 7, 8, 10, 9, 8}}},  // roof: one ring through v twice
+                                             {{{8, 9, 12, 11}}},             // chimney walls
+                                             {{{9, 10, 13, 12}}},
+                                             {{{10, 8, 11, 13}}},
+                                             {{{11, 12, 13}}}};  // chimney top
   SolidCheck c;
   const std::string defect = mc::output::grid_solid_defect(solid, pool, &c);
   ASSERT_FALSE(defect.empty());
@@ -310,15 +313,15 @@ TEST(PartRepair, ACollapsedSliverIsClosedOnTheGrid) {
   std::vector<Vec3> pool = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0},  // 0-4 ground
                             {0, 0, 2}, {1, 0, 2}, {1, 1, 2}, {0, 1, 2},             // 5-8 high roof
                             {1, 0, 1}, {2, 0, 1}, {2, 1, 1}, {1, 1, 1}};            // 9-12 low roof
-  std::vector<mc::output::GridFace> solid = {{{{0, 4, 3, 2, 1}}},                               // ground
-                                 {{{0, 1, 6, 5}}},                                  // front of the high block
-                                 {{{1, 2, 10, 9}}},                                 // front of the low block
-                                 {{{9, 12, 7, 6, 1}}},      // step wall, its spike down to 1
-                                 {{{2, 3, 11, 10}}},        // right wall
-                                 {{{3, 4, 8, 7, 12, 11}}},  // back wall
-                                 {{{4, 0, 5, 8}}},          // left wall
-                                 {{{5, 6, 7, 8}}},          // high roof
-                                 {{{9, 10, 11, 12}}}};      // low roof
+  std::vector<mc::output::GridFace> solid = {{{{0, 4, 3, 2, 1}}},                   // ground
+                                             {{{0, 1, 6, 5}}},                      // front of the high block
+                                             {{{1, 2, 10, 9}}},                     // front of the low block
+                                             {{{9, 12, 7, 6, 1}}},      // step wall, its spike down to 1
+                                             {{{2, 3, 11, 10}}},        // right wall
+                                             {{{3, 4, 8, 7, 12, 11}}},  // back wall
+                                             {{{4, 0, 5, 8}}},          // left wall
+                                             {{{5, 6, 7, 8}}},          // high roof
+                                             {{{9, 10, 11, 12}}}};      // low roof
   const std::string defect = mc::output::grid_solid_defect(solid, pool);
   ASSERT_FALSE(defect.empty());
   const PartRepair r = check_and_repair(solid, pool);

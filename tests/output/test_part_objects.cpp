@@ -55,7 +55,8 @@ TEST(EncodeSolid, SnapsToTheTransformGridDedupesAndKeepsLabels) {
   EXPECT_EQ(a.geometry["semantics"]["surfaces"].size(), 4u);
   EXPECT_EQ(a.geometry["semantics"]["values"][0].size(), 6u);
   // A second part sharing a face reuses the vertices on the grid.
-  const EncodedSolid b = encode_solid(mc::test::labelled_box({85010, 446000, 0}, {10, 20, 6}), "2.2", "2.0", pool);
+  const EncodedSolid b =
+      encode_solid(mc::test::labelled_box({85010, 446000, 0}, {10, 20, 6}), "2.2", "2.0", pool);
   EXPECT_EQ(out.size(), 13u);
   // A face thinner than the grid collapses and is dropped, counted.
   PolygonMesh thin = mc::test::labelled_box({85000, 446000, 0}, {10, 0.0001, 6});

@@ -16,7 +16,6 @@
 
 namespace mc::cli {
 
-
 int reproject_main(int argc, char** argv) {
   CLI::App app{"morphcut-city reproject - write a city (CityJSON, CityJSONSeq or CityGML) in another CRS",
                "morphcut-city reproject"};
