@@ -11,8 +11,8 @@
 
 namespace mc {
 
-CarvingPlanes carving_planes(InputFrame& in, const OpenInput& open, const PreprocessParams& p, double terrain_z,
-                             Preprocessed& out) {
+CarvingPlanes carving_planes(InputFrame& in, const OpenInput& open, const PreprocessParams& p,
+                             double terrain_z, Preprocessed& out) {
   CarvingPlanes cp;
   PolygonMesh& mesh = in.mesh;
   PreprocessParams resolved = p;
@@ -52,7 +52,8 @@ CarvingPlanes carving_planes(InputFrame& in, const OpenInput& open, const Prepro
   // Planes of the input's holes (missing faces), after the regions; a virtual face.
   cp.holes = hole_planes(mesh, out.dist, sp.min_area, out.box.lo.z);
   for (const HolePlane& h : cp.holes) {
-    missing_face_plane.push_back(add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area));
+    missing_face_plane.push_back(
+        add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area));
     missing_face_box.push_back(h.bbox);
     ++out.hole_planes;
   }
@@ -109,7 +110,8 @@ CarvingPlanes carving_planes(InputFrame& in, const OpenInput& open, const Prepro
           break;
         }
       if (known) continue;
-      missing_face_plane.push_back(add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area));
+      missing_face_plane.push_back(
+          add_carve_plane(h.plane, h.bbox, mesh.label_index("ClosureSurface"), h.area));
       missing_face_box.push_back(h.bbox);
       ++out.boundary_wall_planes;
     }

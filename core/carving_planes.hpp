@@ -15,10 +15,10 @@
 namespace mc {
 
 struct CarvingPlanes {
-  std::vector<CarvePlane> planes;  // in carving order
-  BBox box;                        // the padded carving box
-  double ground_z = 0;             // the ground level of the vertical vote (§6.4)
-  std::vector<HolePlane> holes;    // the input's holes (their floors cap open bottoms)
+  std::vector<CarvePlane> planes;    // in carving order
+  BBox box;                          // the padded carving box
+  double ground_z = 0;               // the ground level of the vertical vote (§6.4)
+  std::vector<HolePlane> holes;      // the input's holes (their floors cap open bottoms)
   bool vertical_applicable = false;  // OpenInput::vertical_applicable()
   bool want_vertical = false;        // the vertical vote labels first (§6.4)
 };
@@ -28,7 +28,7 @@ struct CarvingPlanes {
 // ground_from_terrain, open_boundary_length and labels. `in.mesh` gains the ClosureSurface and
 // GroundSurface labels of the virtual faces. `terrain_z` (input coordinates, NaN = unknown): the
 // ground of a model without ground and walls. Throws std::runtime_error without any plane.
-CarvingPlanes carving_planes(InputFrame& in, const OpenInput& open, const PreprocessParams& p, double terrain_z,
-                             Preprocessed& out);
+CarvingPlanes carving_planes(InputFrame& in, const OpenInput& open, const PreprocessParams& p,
+                             double terrain_z, Preprocessed& out);
 
 }  // namespace mc

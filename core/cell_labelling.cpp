@@ -42,12 +42,13 @@ CellLabeller::CellLabeller(const InputFrame& in, const TriangleSoup& oracle_tris
   o.vertical_input = std::make_unique<VerticalOracle>(*o.soup, cover, out.dist, planes.ground_z);
   // Floors of parts whose ground is missing above the lowest level count as ground faces of the
   // vertical vote (docs/algorithm.md §6.4).
-  const bool horizontal_holes = std::any_of(planes.holes.begin(), planes.holes.end(), [&](const HolePlane& h) {
-    return h.loop.size() >= 3 && std::abs(h.plane.n.z) >= std::cos(out.angle_rad);
-  });
+  const bool horizontal_holes =
+      std::any_of(planes.holes.begin(), planes.holes.end(), [&](const HolePlane& h) {
+        return h.loop.size() >= 3 && std::abs(h.plane.n.z) >= std::cos(out.angle_rad);
+      });
   if (horizontal_holes)  // every triangle, walls too: what lies below a hole
-    o.all_surfaces = std::make_unique<VerticalOracle>(*o.soup, std::vector<uint8_t>(o.soup->triangles.size(), 1),
-                                                      out.dist, planes.ground_z);
+    o.all_surfaces = std::make_unique<VerticalOracle>(
+        *o.soup, std::vector<uint8_t>(o.soup->triangles.size(), 1), out.dist, planes.ground_z);
   if (const TriangleSoup floors = horizontal_holes ? open_bottoms(planes.holes, *o.vertical_input,
                                                                   *o.all_surfaces, out.dist, out.angle_rad)
                                                    : TriangleSoup{};
@@ -97,7 +98,9 @@ Labelling CellLabeller::label(bool use_vertical, Clock::time_point deadline) con
   // oracle's box: beyond it everything is outside, so a cell hanging out of an open bottom (no
   // floor face to touch) is not uniform and needs the full vote.
   const BBox ob = c.oracle_box;
-  c.surface_touches = [&index, ob](const BBox& b) { return index.touches(b) || (ob.overlaps(b) && !ob.contains(b)); };
+  c.surface_touches = [&index, ob](const BBox& b) {
+    return index.touches(b) || (ob.overlaps(b) && !ob.contains(b));
+  };
   // A valid solid's cell that the surface reaches at most a hair into (fitting noise of the
   // faces along its facets) is uniform but for that band (docs/algorithm.md §7.3).
   if (out_.fast_path && !use_vertical && p_.grazed_cells) {
@@ -122,8 +125,8 @@ Labelling CellLabeller::label(bool use_vertical, Clock::time_point deadline) con
     double thin = 0;
     if (const size_t n = flip_thin_cells(*l.complex, l.inside, 2 * p_.output_grid, thin))
       l.problems.push_back("changed the side of " + std::to_string(n) +
-                           " cell(s) thinner than two steps of the output grid (volume " + std::to_string(thin) +
-                           ")");
+                           " cell(s) thinner than two steps of the output grid (volume " +
+                           std::to_string(thin) + ")");
   }
   // A void enclosed by the building would be an inner shell of the cell and of a part: filled.
   double filled = 0;

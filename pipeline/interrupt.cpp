@@ -4,6 +4,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <optional>
 
 #include "io/temp_registry.hpp"
 
@@ -41,5 +44,34 @@ void install_interrupt_handlers() {
 int interrupt_signal() noexcept { return g_signal.load(); }
 void request_interrupt(int sig) noexcept { g_signal.store(sig); }
 void clear_interrupt() noexcept { g_signal.store(0); }
+
+InterruptWatchdog::InterruptWatchdog(double grace_s) : grace_(grace_s), thread_([this] { loop(); }) {}
+
+InterruptWatchdog::~InterruptWatchdog() {
+  {
+    std::lock_guard lock(m_);
+    done_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+void InterruptWatchdog::loop() {
+  using Clock = std::chrono::steady_clock;
+  std::unique_lock lock(m_);
+  std::optional<Clock::time_point> since_signal;
+  while (!done_) {
+    cv_.wait_for(lock, std::chrono::milliseconds(50));
+    if (done_) break;
+    if (const int sig = interrupt_signal()) {
+      if (!since_signal) since_signal = Clock::now();
+      if (std::chrono::duration<double>(Clock::now() - *since_signal).count() > grace_) {
+        mc::io::unlink_registered_temp_files();
+        std::fprintf(stderr, "\nmorphcut-city: interrupted; buildings still running were abandoned\n");
+        _exit(128 + sig);
+      }
+    }
+  }
+}
 
 }  // namespace mc::pipeline

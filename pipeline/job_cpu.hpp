@@ -24,6 +24,13 @@ inline double cpu_seconds_of(clockid_t clock) {
 inline double thread_cpu_seconds() { return cpu_seconds_of(CLOCK_THREAD_CPUTIME_ID); }
 
 // User + system CPU seconds of the whole process so far (every thread).
+// The process's peak resident memory in MB (Linux reports kilobytes).
+inline double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
 inline double process_cpu_seconds() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);

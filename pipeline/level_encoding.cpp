@@ -1,0 +1,226 @@
+#include "pipeline/level_encoding.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "core/hull.hpp"
+#include "io/off_obj.hpp"
+#include "output/part_merge.hpp"
+#include "output/part_repair.hpp"
+#include "output/rounding.hpp"
+
+namespace mc::pipeline {
+
+using namespace mc::output;
+using namespace mc::report;
+using nlohmann::json;
+
+std::string part_id(const std::string& building, size_t level, size_t index) {
+  return building + "-mc" + std::to_string(level) + "-" + std::to_string(index);
+}
+
+namespace {
+
+
+EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
+                          const std::vector<PartResult>& parts, const Preprocessed& pre,
+                          const std::string& lod, const std::string& version, VertexPool& pool,
+                          bool conforming, bool separate = false) {
+  EncodedLevel e;
+  e.lv.index = i;
+  e.lv.threshold = threshold;
+  e.lv.parts = parts.size();
+  if (parts.empty()) {
+    e.defect = "no parts";
+    return e;
+  }
+  double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
+  std::vector<PolygonMesh> meshes;
+  if (conforming) meshes = level_part_meshes(pre, parts);
+  else
+    for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
+  if (separate) separate_near_touches(meshes, pool.step());
+  std::vector<EncodedSolid> solids;
+  for (size_t j = 0; j < parts.size(); ++j) {
+    solids.push_back(encode_solid(meshes[j], lod, version, pool));
+    e.check_seconds += solids.back().check_seconds;
+    if (!solids.back().defect.empty()) {
+      e.defect =
+          "part " + std::to_string(j) + " is invalid on the output grid (" + solids.back().defect + ")";
+      e.failed_part = static_cast<int>(j);
+      // For a developer: the part that failed, before rounding (docs/reliability.md).
+      if (const char* dir = std::getenv("MC_DUMP_GRID_DEFECTS"))
+        mc::io::write_off(std::string(dir) + "/" + building + "-L" + std::to_string(i) + "-p" +
+                              std::to_string(j) + (conforming ? "" : "-own") + ".off",
+                          meshes[j]);
+      return e;
+    }
+  }
+  // A part repaired on its own may have changed a face it shares: both copies made the same again
+  // (repairs are rare: nothing to do, and nothing copied, without one).
+  const bool any_repaired =
+      std::any_of(solids.begin(), solids.end(), [](const EncodedSolid& s) { return s.repaired; });
+  if (conforming && any_repaired) {
+    std::vector<std::vector<GridFace>> faces;
+    std::vector<bool> repaired;
+    for (EncodedSolid& solid : solids) {
+      faces.push_back(std::move(solid.faces));
+      repaired.push_back(solid.repaired);
+    }
+    const std::vector<size_t> changed = align_shared_faces(faces, repaired, pool.vertices());
+    for (size_t k = 0; k < solids.size(); ++k) solids[k].faces = std::move(faces[k]);
+    for (size_t k : changed) {
+      write_solid(solids[k], meshes[k].semantic_labels, lod, version);
+      solids[k].repaired = true;  // counted with the repaired parts
+    }
+  }
+  for (size_t j = 0; j < parts.size(); ++j) {
+    const PartResult& part = parts[j];
+    PolygonMesh& mesh = meshes[j];
+    double hull_volume = part.hull_volume;
+    if (!(hull_volume > 0)) hull_volume = convex_hull(mesh.vertices).volume;  // singleton parts
+    const double convexity = hull_volume > 0 ? std::min(1.0, part.volume / hull_volume) : 0.0;
+    EncodedSolid& solid = solids[j];
+    e.dropped_faces += solid.dropped_faces;
+    e.repaired_parts += solid.repaired;
+    e.split_faces += solid.split_faces;
+    json neighbours = json::array();
+    for (uint32_t n : part.neighbours) neighbours.push_back(part_id(building, i, n));
+    const int degree = static_cast<int>(part.neighbours.size());
+    e.lv.max_degree = std::max(e.lv.max_degree, degree);
+    e.lv.end_parts += degree == 1;
+    total_volume += part.volume;
+    largest = std::max(largest, part.volume);
+    weighted_cvx += convexity * part.volume;
+    sum_cvx += convexity;
+    min_cvx = std::min(min_cvx, convexity);
+    json obj = {{"type", "BuildingPart"},
+                {"parents", json::array({building})},
+                {"attributes",
+                 {{"morphcut_level", threshold},
+                  {"morphcut_index", j},
+                  {"volume", rounded(part.volume, 1e-6)},
+                  {"convexity", rounded(convexity, 1e-9)},
+                  {"neighbours", neighbours}}},
+                {"geometry", json::array({std::move(solid.geometry)})}};
+    e.staged.push_back({part_id(building, i, j), std::move(obj)});
+    e.meshes.push_back(std::move(mesh));
+  }
+  if (total_volume > 0) e.lv.largest_share = largest / total_volume;
+  e.lv.convexity = total_volume > 0 ? weighted_cvx / total_volume : 0.0;
+  e.lv.mean_convexity = sum_cvx / static_cast<double>(parts.size());
+  e.lv.min_convexity = min_cvx;
+  return e;
+}
+
+// A level whose parts are the parts of the level encoded before it is encoded exactly as that one
+// (the same meshes, vertices already in the pool, the same checks and repairs): its encoding is
+// that level's under its own ids, level and neighbour ids. Most small buildings keep their parts
+// over several levels (docs/benchmarks.md, "Speed").
+}  // namespace
+
+EncodedLevel relabelled(const EncodedLevel& previous, const std::string& building, size_t i, double threshold,
+                        const std::vector<PartResult>& parts) {
+  EncodedLevel e = previous;
+  e.lv.index = i;
+  e.lv.threshold = threshold;
+  e.check_seconds = 0;
+  for (size_t j = 0; j < e.staged.size(); ++j) {
+    e.staged[j].id = part_id(building, i, j);
+    json& a = e.staged[j].object["attributes"];
+    a["morphcut_level"] = threshold;
+    json neighbours = json::array();
+    for (uint32_t n : parts[j].neighbours) neighbours.push_back(part_id(building, i, n));
+    a["neighbours"] = std::move(neighbours);
+  }
+  return e;
+}
+
+namespace {
+
+// A level's parts encoded on the output grid, as meshes that fit their neighbours exactly
+// (level_part_meshes). When a part stays invalid after its own repairs (output/part_repair.hpp):
+//   1. the level's vertices are clustered ever more coarsely (vertices within 1, 2, then 4 grid
+//      steps become one) and the whole level is encoded again, so that every part sharing a
+//      moved vertex moves with it;
+//   2. each part is encoded from its own mesh (no vertex kept for a neighbour's corner): a kept
+//      vertex rounded off its straight edge can force a sliver triangle that folds into the part.
+//      Valid parts, but a neighbour's corner may then stand a fraction of a grid step inside it.
+// On failure the pool is back at its mark and the first defect is reported.
+EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double threshold,
+                                  const std::vector<PartResult>& parts, const Preprocessed& pre,
+                                  const std::string& lod, const std::string& version, VertexPool& pool) {
+  const size_t mark = pool.mark();
+  EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
+  if (e.defect.empty()) return e;
+  double spent = e.check_seconds;  // every attempt's checks count
+  const std::string first = e.defect;
+  const int first_part = e.failed_part;
+  if (pool.can_cluster())
+    for (int steps : {1, 2, 4}) {
+      pool.rollback(mark);
+      pool.cluster(steps, mark);
+      e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
+      pool.cluster(0, 0);
+      spent += e.check_seconds;
+      e.check_seconds = spent;
+      if (e.defect.empty()) {
+        e.grid_repair = "cluster " + std::to_string(steps);
+        return e;
+      }
+    }
+  // Vertices a fraction of a step from a face of their part moved away from it (part_merge.hpp).
+  pool.rollback(mark);
+  e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true, /*separate=*/true);
+  spent += e.check_seconds;
+  e.check_seconds = spent;
+  if (e.defect.empty()) {
+    e.grid_repair = "separated";
+    return e;
+  }
+  pool.rollback(mark);
+  e = encode_level(building, i, threshold, parts, pre, lod, version, pool, false);
+  e.check_seconds += spent;
+  if (e.defect.empty()) {
+    e.grid_repair = "non-conforming";
+    return e;
+  }
+  pool.rollback(mark);
+  e.defect = first;
+  e.failed_part = first_part;
+  return e;
+}
+
+}  // namespace
+
+// encode_parts_on_grid, then, while a part still fails, that part merged into the neighbour it
+// shares the largest face with and the level encoded again (output/part_merge.hpp): a level of
+// fewer parts rather than another level. On failure the first defect is reported.
+EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
+                                  const std::vector<PartResult>& parts, const Preprocessed& pre,
+                                  const std::string& lod, const std::string& version, VertexPool& pool) {
+  EncodedLevel e = encode_parts_on_grid(building, i, threshold, parts, pre, lod, version, pool);
+  if (e.defect.empty() || parts.size() < 2) return e;
+  const EncodedLevel first = e;
+  double spent = e.check_seconds;
+  std::vector<PartResult> current = parts;
+  for (size_t merges = 1; current.size() > 1 && e.failed_part >= 0; ++merges) {
+    const int k = largest_neighbour(level_part_meshes(pre, current), static_cast<size_t>(e.failed_part));
+    if (k < 0) break;
+    current = merge_parts(current, static_cast<size_t>(e.failed_part), static_cast<size_t>(k), pre);
+    e = encode_parts_on_grid(building, i, threshold, current, pre, lod, version, pool);
+    spent += e.check_seconds;
+    e.check_seconds = spent;
+    if (e.defect.empty()) {
+      e.grid_repair = "merged " + std::to_string(merges) + " part(s)" +
+                      (e.grid_repair.empty() ? std::string() : ", " + e.grid_repair);
+      e.merged = std::move(current);
+      return e;
+    }
+  }
+  EncodedLevel out = first;
+  out.check_seconds = spent;
+  return out;
+}
+
+}  // namespace mc::pipeline
