@@ -1,5 +1,7 @@
 #include "pipeline/cache_entry.hpp"
 
+#include "report/level_json.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -31,23 +33,7 @@ std::optional<double> get_opt(const json& j, const char* key) {
 json outcome_to_json(const BuildingOutcome& b) {
   json levels = json::array();
   for (const LevelOutcome& l : b.levels)
-    levels.push_back({{"index", l.index},
-                      {"threshold", l.threshold},
-                      {"parts", l.parts},
-                      {"convexity", num(l.convexity)},
-                      {"mean_convexity", num(l.mean_convexity)},
-                      {"min_convexity", num(l.min_convexity)},
-                      {"largest_share", num(l.largest_share)},
-                      {"cost", num(l.cost)},
-                      {"g", num(l.g)},
-                      {"h", num(l.h)},
-                      {"remaining_concave", l.remaining_concave},
-                      {"nodes_expanded", l.nodes_expanded},
-                      {"truncated", l.truncated},
-                      {"fallback", l.fallback},
-                      {"max_degree", l.max_degree},
-                      {"end_parts", l.end_parts},
-                      {"grid_repair", l.grid_repair}});
+    levels.push_back(json::parse(level_json(l).dump()));  // report/level_json.hpp
   const Sizes& s = b.size;
   const Measures& m = b.measures;
   json centroid = nullptr;
@@ -116,27 +102,7 @@ void outcome_from_json(const json& j, BuildingOutcome& b) {
   }
   b.problems = j.at("problems").get<std::vector<std::string>>();
   b.levels.clear();
-  for (const json& lj : j.at("levels")) {
-    LevelOutcome l;
-    l.index = lj.at("index").get<size_t>();
-    l.threshold = lj.at("threshold").get<double>();
-    l.parts = lj.at("parts").get<size_t>();
-    l.convexity = get_num(lj, "convexity");
-    l.mean_convexity = get_num(lj, "mean_convexity");
-    l.min_convexity = get_num(lj, "min_convexity");
-    l.largest_share = get_num(lj, "largest_share");
-    l.cost = get_num(lj, "cost");
-    l.g = get_num(lj, "g");
-    l.h = get_num(lj, "h");
-    l.remaining_concave = lj.at("remaining_concave").get<int>();
-    l.nodes_expanded = lj.at("nodes_expanded").get<int64_t>();
-    l.truncated = lj.at("truncated").get<bool>();
-    l.fallback = lj.at("fallback").get<std::string>();
-    l.max_degree = lj.at("max_degree").get<int>();
-    l.end_parts = lj.at("end_parts").get<int>();
-    l.grid_repair = lj.at("grid_repair").get<std::string>();
-    b.levels.push_back(std::move(l));
-  }
+  for (const json& lj : j.at("levels")) b.levels.push_back(level_from_json(lj));
   const json& sj = j.at("sizes");
   Sizes& s = b.size;
   s.input_faces = sj.at("input_faces").get<size_t>();

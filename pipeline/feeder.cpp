@@ -18,7 +18,9 @@ constexpr size_t kLookAheadVertices = 32768;
 // writer needs it (not when it enters the window, where the window could fill up with small
 // buildings finished behind it and leave cores idle).
 Feeder::Feeder(mc::io::FeatureSource& reader, size_t window, int threads)
-    : reader_(reader), window_(window), look_ahead_(std::max(window, kLookAhead)),
+    : reader_(reader),
+      window_(window),
+      look_ahead_(std::max(window, kLookAhead)),
       max_largest_first_(std::max(1, threads - 1)) {}
 
 Msg Feeder::next() {
@@ -43,7 +45,8 @@ Msg Feeder::next() {
   if (ahead_.empty()) return {};
   auto lowest = [](const Msg& a, const Msg& b) { return a->sequence < b->sequence; };
   auto pick = std::min_element(ahead_.begin(), ahead_.end(), lowest);
-  const bool largest = started_ - written_.load() + 1 < window_ && largest_running_.load() < max_largest_first_;
+  const bool largest =
+      started_ - written_.load() + 1 < window_ && largest_running_.load() < max_largest_first_;
   if (largest) {
     pick = std::min_element(ahead_.begin(), ahead_.end(), [](const Msg& a, const Msg& b) {
       const size_t na = a->feature.vertices.size(), nb = b->feature.vertices.size();

@@ -21,7 +21,6 @@ std::string part_id(const std::string& building, size_t level, size_t index) {
 
 namespace {
 
-
 EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
                           const std::vector<PartResult>& parts, const Preprocessed& pre,
                           const std::string& lod, const std::string& version, VertexPool& pool,

@@ -36,10 +36,17 @@ std::vector<PartResult> singleton_parts(const Preprocessed& pre) {
 }  // namespace
 
 LevelWriter::LevelWriter(const std::string& building, const Preprocessed& pre, const Decomposition& dec,
-                         const std::vector<double>& thresholds, const std::string& lod, const std::string& version,
-                         const mc::io::Transform& transform, const WorkingFrame& frame, double grid_step)
-    : building_(building), pre_(pre), dec_(dec), thresholds_(thresholds), lod_(lod), version_(version),
-      pool_(new_vertices_, transform, frame, grid_step), singleton_(singleton_parts(pre)) {}
+                         const std::vector<double>& thresholds, const std::string& lod,
+                         const std::string& version, const mc::io::Transform& transform,
+                         const WorkingFrame& frame, double grid_step)
+    : building_(building),
+      pre_(pre),
+      dec_(dec),
+      thresholds_(thresholds),
+      lod_(lod),
+      version_(version),
+      pool_(new_vertices_, transform, frame, grid_step),
+      singleton_(singleton_parts(pre)) {}
 
 WrittenLevel LevelWriter::encode(size_t i, double& check_seconds) {
   const LevelSource src = source_for(dec_, i);
@@ -48,8 +55,9 @@ WrittenLevel LevelWriter::encode(size_t i, double& check_seconds) {
   w.fallback = src.fallback;
   const size_t mark = pool_.mark();
   const bool same_parts = reusable_ && *w.parts == *reusable_->second;
-  w.e = same_parts ? relabelled(reusable_->first, building_, i, thresholds_[i], *w.parts)
-                   : encode_level_on_grid(building_, i, thresholds_[i], *w.parts, pre_, lod_, version_, pool_);
+  w.e = same_parts
+            ? relabelled(reusable_->first, building_, i, thresholds_[i], *w.parts)
+            : encode_level_on_grid(building_, i, thresholds_[i], *w.parts, pre_, lod_, version_, pool_);
   check_seconds += w.e.check_seconds;
   if (!w.e.defect.empty()) {
     // A part that is not a valid solid (core's part mesh has a non-manifold edge) is never
@@ -125,7 +133,8 @@ void LevelWriter::commit(BuildingOutcome& out) {
   }
   out.feature.vertices.insert(out.feature.vertices.end(), new_vertices_.begin(), new_vertices_.end());
   json& building = out.feature.objects[out.id];
-  if (!building.contains("children") || !building["children"].is_array()) building["children"] = json::array();
+  if (!building.contains("children") || !building["children"].is_array())
+    building["children"] = json::array();
   for (auto& s : staged_) {
     building["children"].push_back(s.id);
     out.feature.objects[s.id] = std::move(s.object);

@@ -23,7 +23,8 @@ RunOutputs::RunOutputs(const RunOptions& opt, const mc::io::Header& header, cons
                        const RunConfig& rc)
     : header_(header), levels_(written_levels(params, rc)), crs_(header.crs), city_(opt.output, header) {
   for (double t : levels_)
-    level_cities_.push_back(std::make_unique<mc::io::CityJsonWriter>(level_output_path(opt.output, t), header));
+    level_cities_.push_back(
+        std::make_unique<mc::io::CityJsonWriter>(level_output_path(opt.output, t), header));
   if (!opt.report.empty()) report_ = std::make_unique<ReportWriter>(opt.report);
   // Centroids to 0.1 mm: 3 decimals of metres, 9 of degrees.
   const int decimals = header.coords.geographic() ? 9 : 3;
@@ -46,7 +47,8 @@ void RunOutputs::write_cities(BuildingOutcome& b) {
 
 void RunOutputs::write_rows(BuildingOutcome& b) {
   if (b.measures.centroid && crs_.valid())
-    b.measures.lonlat = crs_.to_lonlat(b.measures.centroid->x, b.measures.centroid->y, b.measures.centroid->z);
+    b.measures.lonlat =
+        crs_.to_lonlat(b.measures.centroid->x, b.measures.centroid->y, b.measures.centroid->z);
   if (report_) report_->add(b);
   if (summary_) summary_->add(b);
   if (graph_) graph_->add(b);

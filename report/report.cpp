@@ -8,6 +8,7 @@
 #include "io/atomic_file.hpp"
 #include "io/errors.hpp"
 #include "io/scratch_file.hpp"
+#include "report/level_json.hpp"
 
 namespace mc::report {
 
@@ -34,24 +35,7 @@ json building_report(const BuildingOutcome& b) {
   j["lod"] = b.lod;
   json levels = json::array();
   for (const auto& l : b.levels) {
-    json lj = {{"index", l.index},
-               {"threshold", l.threshold},
-               {"parts", l.parts},
-               {"convexity", num(l.convexity)},
-               {"mean_convexity", num(l.mean_convexity)},
-               {"min_convexity", num(l.min_convexity)},
-               {"largest_part_share", num(l.largest_share)},
-               {"cost", num(l.cost)},
-               {"g", num(l.g)},
-               {"h", num(l.h)},
-               {"remaining_concave_edges", l.remaining_concave},
-               {"nodes_expanded", l.nodes_expanded},
-               {"seconds", secs(l.seconds)},
-               {"truncated", l.truncated},
-               {"max_degree", l.max_degree},
-               {"end_parts", l.end_parts}};
-    if (!l.fallback.empty()) lj["fallback"] = l.fallback;
-    if (!l.grid_repair.empty()) lj["grid_repair"] = l.grid_repair;
+    json lj = level_json(l);  // report/level_json.hpp
     for (const auto& lm : b.massing.levels)  // part roles (massing/massing.hpp)
       if (lm.index == l.index) {
         json roles = json::object();
