@@ -13,7 +13,8 @@ struct RunConfig {
   // Indices into Params::dec.levels of the levels written as BuildingParts, ascending and
   // unique. Empty = all levels. (YAML lists the threshold values; the loader maps them.)
   std::vector<std::size_t> output_levels;
-  // Maximum buildings in flight (bounds memory). 0 = automatic: 2 × worker threads.
+  // Maximum buildings in flight (bounds memory). 0 = automatic: max(16, 8 × worker threads)
+  // (effective_in_flight below).
   int in_flight = 0;
   // trace, debug, info, warn, error, off (spdlog's level names).
   std::string log_level = "info";

@@ -1,6 +1,6 @@
 // One building, start to finish: extraction at the configured LoD, preprocessing and
 // decomposition under the per-building deadline, parts written into the feature.
-// Never throws: every failure becomes a status with its reason (architecture.md §1), so one bad
+// Never throws: every failure becomes a status with its reason (docs/reliability.md), so one bad
 // building cannot stop a city.
 #pragma once
 #include "config/run_config.hpp"
@@ -13,7 +13,7 @@ namespace mc::pipeline {
 using mc::report::BuildingOutcome;
 
 // Non-building features come back untouched with is_building = false. A building comes back
-// with its BuildingParts (architecture.md §4) and morphcut_* attributes; when the job fails or
+// with its BuildingParts (docs/output-format.md) and morphcut_* attributes; when the job fails or
 // is skipped the input geometry is kept exactly, only the status attributes are added.
 BuildingOutcome run_building(const mc::io::Feature& f, const mc::io::Header& h, const Params& p,
                              const RunConfig& rc);

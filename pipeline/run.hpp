@@ -1,4 +1,4 @@
-// A whole city through the TBB flow graph of architecture.md §1:
+// A whole city through a TBB flow graph (docs/design.md, "Pipeline"):
 //
 //   source (reader, serial) -> limiter (bounded in flight) -> job (parallel) -> sequencer
 //   (input order) -> writer (serial: CityJSON, report, CSV, progress) --decrement--> limiter

@@ -1,4 +1,4 @@
-// The run report (architecture.md §5): one JSON document with the run's facts first and one
+// The run report (docs/output-format.md): one JSON document with the run's facts first and one
 // entry per building after them. Building entries are spooled to an anonymous scratch file as
 // they come, so the report costs no memory per building however large the city; the document is
 // assembled and committed atomically at the end.
