@@ -1,7 +1,10 @@
 #include "core/solid_validation.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/convex_hull_3.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -15,7 +18,11 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Modifier_base.h>
 #include <CGAL/Polygon_2.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Polyhedron_incremental_builder_3.h>
+#include <CGAL/Polyhedron_items_with_id_3.h>
 #include <CGAL/linear_least_squares_fitting_3.h>
 
 #include <Eigen/Eigenvalues>
@@ -31,7 +38,6 @@
 
 #include "core/hull.hpp"
 #include "core/union_find.hpp"
-#include "core/vertex_fans.hpp"
 
 namespace mc {
 
@@ -234,50 +240,74 @@ K::Plane_3 val3dity_plane(const std::vector<K::Point_3>& pts) {
   return K::Plane_3(zero(p.a()), zero(p.b()), zero(p.c()), p.d());
 }
 
-// val3dity's ring rule in a face's plane (104): each projected ring is a simple polygon with area.
-bool projected_rings_simple(const std::vector<std::vector<uint32_t>>& rings,
-                            const std::vector<K::Point_3>& local) {
+// A face's rings projected as val3dity projects them for its ring and polygon rules: onto the
+// least-squares plane of all the face's points.
+std::vector<CGAL::Polygon_2<K>> projected_rings(const std::vector<std::vector<uint32_t>>& rings,
+                                                const std::vector<K::Point_3>& local) {
   std::vector<K::Point_3> all;
   for (const auto& r : rings)
     for (uint32_t v : r) all.push_back(local[v]);
   const K::Plane_3 pl = val3dity_plane(all);
-  for (const auto& r : rings) {
-    CGAL::Polygon_2<K> pg;
-    for (uint32_t v : r) pg.push_back(pl.to_2d(local[v]));
+  std::vector<CGAL::Polygon_2<K>> out(rings.size());
+  for (size_t i = 0; i < rings.size(); ++i)
+    for (uint32_t v : rings[i]) out[i].push_back(pl.to_2d(local[v]));
+  return out;
+}
+
+// val3dity's ring rule in a face's plane (104): each projected ring is a simple polygon with area.
+bool rings_simple(const std::vector<CGAL::Polygon_2<K>>& rings) {
+  for (const auto& pg : rings)
     if (!pg.is_simple() || pg.orientation() == CGAL::COLLINEAR) return false;
+  return true;
+}
+
+// A face triangulated as val3dity triangulates it (Surface::construct_ct_one_face): constrained
+// Delaunay in the least-squares plane of its outer ring, each ring's edges inserted in turn (both
+// ends, then the constraint), triangles in the triangulation's order, turning like the outer
+// ring. A triangle ring is its own triangle. False when the rings cross (reported elsewhere).
+bool val3dity_triangles(const std::vector<std::vector<uint32_t>>& rings, const std::vector<K::Point_3>& local,
+                        std::vector<std::array<uint32_t, 3>>& out) {
+  out.clear();
+  if (rings.size() == 1 && rings[0].size() == 3) {
+    out.push_back({rings[0][0], rings[0][1], rings[0][2]});
+    return true;
+  }
+  std::vector<K::Point_3> outer;
+  for (uint32_t v : rings[0]) outer.push_back(local[v]);
+  const K::Plane_3 pl = val3dity_plane(outer);
+  CGAL::Polygon_2<K> outer_2d;
+  for (const auto& p : outer) outer_2d.push_back(pl.to_2d(p));
+  const bool reversed = !outer_2d.is_counterclockwise_oriented();
+  CDT cdt;
+  try {
+    for (const auto& ring : rings)
+      for (size_t i = 0; i < ring.size(); ++i) {
+        const uint32_t a = ring[i], b = ring[(i + 1) % ring.size()];
+        CDT::Vertex_handle va = cdt.insert(pl.to_2d(local[a]));
+        va->info() = a;
+        CDT::Vertex_handle vb = cdt.insert(pl.to_2d(local[b]));
+        vb->info() = b;
+        if (va != vb) cdt.insert_constraint(va, vb);
+      }
+  } catch (const CDT::Intersection_of_constraints_exception&) { return false; }
+  mark_domains(cdt);
+  for (auto fh : cdt.finite_face_handles()) {
+    if (fh->info().nesting % 2 != 1) continue;
+    const uint32_t a = fh->vertex(0)->info(), b = fh->vertex(1)->info(), c = fh->vertex(2)->info();
+    out.push_back(reversed ? std::array<uint32_t, 3>{a, c, b} : std::array<uint32_t, 3>{a, b, c});
   }
   return true;
 }
 
-// val3dity's normals rule (204): the face triangulated (constrained Delaunay) in the least-squares
-// plane of its outer ring; the largest angle between the first triangle's normal and another's.
-// Negative when the rings cannot be triangulated (their crossing is reported elsewhere).
-double triangle_normals_deviation_deg(const std::vector<std::vector<uint32_t>>& rings,
+// val3dity's normals rule (204) on a face's triangles: the largest angle between the first
+// triangle's normal and another's.
+double triangle_normals_deviation_deg(const std::vector<std::array<uint32_t, 3>>& tris,
                                       const std::vector<K::Point_3>& local) {
-  if (rings.size() == 1 && rings[0].size() == 3) return 0;
-  std::vector<K::Point_3> outer;
-  for (uint32_t v : rings[0]) outer.push_back(local[v]);
-  const K::Plane_3 pl = val3dity_plane(outer);
-  CDT cdt;
-  try {
-    for (const auto& ring : rings) {
-      std::vector<CDT::Vertex_handle> vh;
-      for (uint32_t id : ring) {
-        CDT::Vertex_handle h = cdt.insert(pl.to_2d(local[id]));
-        h->info() = id;
-        vh.push_back(h);
-      }
-      for (size_t i = 0; i < vh.size(); ++i)
-        if (vh[i] != vh[(i + 1) % vh.size()]) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
-    }
-  } catch (const CDT::Intersection_of_constraints_exception&) { return -1; }
-  mark_domains(cdt);
+  if (tris.size() < 2) return 0;
   std::optional<K::Vector_3> first;
   double worst = 0;
-  for (auto fh : cdt.finite_face_handles()) {
-    if (fh->info().nesting % 2 != 1) continue;
-    const K::Point_3 &a = local[fh->vertex(0)->info()], &b = local[fh->vertex(1)->info()],
-                     &c = local[fh->vertex(2)->info()];
+  for (const auto& t : tris) {
+    const K::Point_3 &a = local[t[0]], &b = local[t[1]], &c = local[t[2]];
     K::Vector_3 n = CGAL::cross_product(b - a, c - a);
     const double len = std::sqrt(n.squared_length());
     if (!(len > 0)) return 180;  // a triangle without area: its normal is anything
@@ -304,85 +334,125 @@ Mesh to_mesh(const TriangleShell& s, bool& ok) {
   return m;
 }
 
-// Edge and vertex topology of the rings: closed, 2-manifold, consistently oriented, connected.
-// True when every edge is used by two faces in opposite directions.
-bool check_topology(const std::vector<std::vector<std::vector<uint32_t>>>& faces,
-                    const std::vector<Vec3>& pts, ErrorLog& log) {
-  std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> directed;  // edge -> faces
-  for (size_t fi = 0; fi < faces.size(); ++fi)
-    for (const auto& ring : faces[fi])
-      for (size_t i = 0; i < ring.size(); ++i)
-        directed[{ring[i], ring[(i + 1) % ring.size()]}].push_back(static_cast<uint32_t>(fi));
-  // Faces joined by edges: connected components.
-  UnionFind parts(faces.size());
-  bool edges_ok = true;
-  for (const auto& [e, fs] : directed) {
-    if (e.first > e.second && directed.count({e.second, e.first})) continue;  // seen from the other side
-    auto back = directed.find({e.second, e.first});
-    const size_t forward = fs.size(), backward = back == directed.end() ? 0 : back->second.size();
-    const std::string edge = fmt(pts[e.first]) + "-" + fmt(pts[e.second]);
-    if (forward + backward == 1) {
-      log.add(solid_code::kShellNotClosed, "edge " + edge + " bounds only face " + std::to_string(fs[0]));
-      edges_ok = false;
-    } else if (forward + backward > 2) {
-      log.add(solid_code::kNonManifoldCase,
-              "edge " + edge + " is shared by " + std::to_string(forward + backward) + " faces");
-      edges_ok = false;
-    } else if (forward == 2 || backward == 2) {
-      const auto& two = forward == 2 ? fs : back->second;
-      log.add(solid_code::kPolygonWrongOrientation, "faces " + std::to_string(two[0]) + " and " +
-                                                        std::to_string(two[1]) + " run along edge " + edge +
-                                                        " in the same direction");
-      edges_ok = false;
-    }
-    std::vector<uint32_t> all = fs;
-    if (back != directed.end()) all.insert(all.end(), back->second.begin(), back->second.end());
-    for (size_t i = 1; i < all.size(); ++i) parts.link(all[i], all[0]);
-  }
-  std::set<uint32_t> components;
-  for (uint32_t f = 0; f < faces.size(); ++f) components.insert(parts.find(f));
-  if (components.size() > 1)
-    log.add(solid_code::kMultipleComponents, std::to_string(components.size()) + " separate groups of faces");
-  return edges_ok;
-}
+using Polyhedron = CGAL::Polyhedron_3<K, CGAL::Polyhedron_items_with_id_3>;
 
-// Vertex umbrellas: the triangle corners at a vertex must link its edges into one cycle. On the
-// faces' triangles, not their rings: a face whose hole touches its outer ring at a vertex has
-// ring corners there that are not the face's wedges around it.
-void check_vertex_fans(const std::vector<std::array<uint32_t, 3>>& triangles, const std::vector<Vec3>& pts,
-                       ErrorLog& log) {
-  std::vector<std::array<uint32_t, 3>> corners;
-  for (const auto& t : triangles)
-    for (size_t i = 0; i < 3; ++i) corners.push_back({t[(i + 2) % 3], t[i], t[(i + 1) % 3]});
-  for (const auto& [v, fans] : split_fans(std::move(corners)))
-    log.add(solid_code::kNonManifoldCase,
-            "vertex " + fmt(pts[v]) + " joins " + std::to_string(fans) + " separate fans of faces");
+// val3dity's shell construction (validate_shell.cpp, ConstructShell): every point, then every
+// face's triangles in order, each added to a halfedge structure if it fits. A triangle that does
+// not fit is tried reversed: if that fits, it runs along an edge of an earlier triangle in the
+// same direction (307), else it would make an edge shared by three faces or a vertex join two
+// fans of faces (303). `tri_face` is each triangle's input face.
+class ShellBuilder : public CGAL::Modifier_base<Polyhedron::HalfedgeDS> {
+ public:
+  ShellBuilder(const std::vector<Vec3>& pts, const std::vector<std::array<uint32_t, 3>>& tris,
+               const std::vector<size_t>& tri_face, ErrorLog& log)
+      : pts_(pts), tris_(tris), tri_face_(tri_face), log_(log) {}
+  bool fitted = true;  // every triangle was added
+
+  void operator()(Polyhedron::HalfedgeDS& hds) override {
+    CGAL::Polyhedron_incremental_builder_3<Polyhedron::HalfedgeDS> b(hds, false);
+    b.begin_surface(pts_.size(), tris_.size());
+    for (const Vec3& p : pts_) b.add_vertex(K::Point_3(p.x, p.y, p.z));
+    for (size_t t = 0; t < tris_.size(); ++t) {
+      std::array<std::size_t, 3> f{tris_[t][0], tris_[t][1], tris_[t][2]};
+      if (b.test_facet(f.begin(), f.end())) {
+        b.add_facet(f.begin(), f.end())->facet()->id() = tri_face_[t];
+        continue;
+      }
+      fitted = false;
+      const std::string face = "face " + std::to_string(tri_face_[t]);
+      std::swap(f[1], f[2]);
+      if (b.test_facet(f.begin(), f.end()))
+        log_.add(solid_code::kPolygonWrongOrientation,
+                 face + " runs along an edge of another face in the same direction, near " + fmt(pts_[f[0]]));
+      else
+        log_.add(solid_code::kNonManifoldCase, face +
+                                                   " would make an edge shared by more than two faces or a "
+                                                   "vertex joining separate fans of faces, near " +
+                                                   fmt(pts_[f[0]]));
+    }
+    if (fitted && b.check_unconnected_vertices()) b.remove_unconnected_vertices();
+    b.end_surface();
+  }
+
+ private:
+  const std::vector<Vec3>& pts_;
+  const std::vector<std::array<uint32_t, 3>>& tris_;
+  const std::vector<size_t>& tri_face_;
+  ErrorLog& log_;
+};
+
+// The shell's topology as val3dity decides it (Surface::validate_as_shell), on the faces'
+// triangles rather than their rings: a vertex of a face that its triangulation puts into one of
+// the face's edges (a hole's corner on the outer ring's edge) splits that edge in the triangles
+// only, and leaves the face across it without a partner. After a triangle that does not fit
+// (303/307) nothing else is checked; then an open shell is one hole per border cycle (302) unless
+// its faces fall apart (305).
+void check_shell_topology(const std::vector<Vec3>& pts, const std::vector<std::array<uint32_t, 3>>& tris,
+                          const std::vector<size_t>& tri_face, ErrorLog& log) {
+  Polyhedron p;
+  ShellBuilder build(pts, tris, tri_face, log);
+  p.delegate(build);
+  if (!build.fitted) return;
+  if (!p.is_valid()) {
+    log.add(solid_code::kNotValid2Manifold, "the faces' triangles do not form a valid halfedge structure");
+    return;
+  }
+  const auto at = [](const Polyhedron::Vertex_handle v) {
+    const K::Point_3& q = v->point();
+    return Vec3{q.x(), q.y(), q.z()};
+  };
+  if (p.is_closed()) {
+    if (const auto n = p.keep_largest_connected_components(1); n > 0)
+      log.add(solid_code::kMultipleComponents, std::to_string(n + 1) + " separate groups of faces");
+    return;
+  }
+  p.normalize_border();
+  if (const auto n = p.keep_largest_connected_components(1); n > 0) {
+    log.add(solid_code::kMultipleComponents, std::to_string(n + 1) + " separate groups of faces");
+    return;
+  }
+  // One 302 per hole, each filled before the next is looked for (val3dity's loop).
+  p.normalize_border();
+  for (size_t guard = 0; p.size_of_border_edges() > 0 && guard < tris.size() + 1; ++guard) {
+    const Polyhedron::Halfedge_handle h = std::next(p.border_halfedges_begin());
+    log.add(solid_code::kShellNotClosed,
+            "edge " + fmt(at(h->opposite()->vertex())) + "-" + fmt(at(h->vertex())) + " of face " +
+                std::to_string(h->opposite()->facet()->id()) + " has no face across it");
+    p.fill_hole(h);
+    p.normalize_border();
+  }
 }
 
 }  // namespace
 
-std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged) {
+std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged,
+                                     bool strict) {
   const double cell = std::max(snap, 1e-12);
   std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
   auto key = [](int64_t x, int64_t y, int64_t z) {
     return (static_cast<uint64_t>(x) * 73856093u) ^ (static_cast<uint64_t>(y) * 19349663u) ^
            (static_cast<uint64_t>(z) * 83492791u);
   };
+  // val3dity compares (dx² + dy²) + dz² with snap² (CGAL::squared_distance): the same operations.
+  const double snap2 = snap * snap;
+  auto close = [&](const Vec3& a, const Vec3& b) {
+    if (!strict) return norm(a - b) <= snap;
+    const double dx = b.x - a.x, dy = b.y - a.y, dz = b.z - a.z;
+    return dx * dx + dy * dy + dz * dz < snap2;
+  };
   std::vector<uint32_t> id(v.size());
   for (size_t i = 0; i < v.size(); ++i) {
     const int64_t cx = std::llround(v[i].x / cell), cy = std::llround(v[i].y / cell),
                   cz = std::llround(v[i].z / cell);
+    // The earliest merged vertex that close, as val3dity scans its list of points in order.
     int64_t found = -1;
-    for (int dx = -1; dx <= 1 && found < 0; ++dx)
-      for (int dy = -1; dy <= 1 && found < 0; ++dy)
-        for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
           auto it = grid.find(key(cx + dx, cy + dy, cz + dz));
           if (it == grid.end()) continue;
           for (uint32_t m : it->second)
-            if (norm(merged[m] - v[i]) <= snap) {
-              found = m;
-              break;
-            }
+            if ((found < 0 || m < found) && close(v[i], merged[m])) found = m;
         }
     if (found < 0) {
       found = static_cast<int64_t>(merged.size());
@@ -410,8 +480,16 @@ const char* solid_error_name(int code) {
       return "NON_PLANAR_POLYGON_DISTANCE_PLANE";
     case solid_code::kNonPlanarNormals:
       return "NON_PLANAR_POLYGON_NORMALS_DEVIATION";
+    case solid_code::kInteriorDisconnected:
+      return "POLYGON_INTERIOR_DISCONNECTED";
+    case solid_code::kInnerRingOutside:
+      return "INNER_RING_OUTSIDE";
+    case solid_code::kInnerRingsNested:
+      return "INNER_RINGS_NESTED";
     case solid_code::kOrientationRingsSame:
       return "ORIENTATION_RINGS_SAME";
+    case solid_code::kNotValid2Manifold:
+      return "NOT_VALID_2_MANIFOLD";
     case solid_code::kTooFewPolygons:
       return "TOO_FEW_POLYGONS";
     case solid_code::kShellNotClosed:
@@ -424,8 +502,8 @@ const char* solid_error_name(int code) {
       return "MULTIPLE_CONNECTED_COMPONENTS";
     case solid_code::kShellSelfIntersection:
       return "SHELL_SELF_INTERSECTION";
-    case solid_code::kAllPolygonsWrongOrientation:
-      return "ALL_POLYGONS_WRONG_ORIENTATION";
+    case solid_code::kWrongOrientationShell:
+      return "WRONG_ORIENTATION_SHELL";
     default:
       return "UNKNOWN";
   }
@@ -544,20 +622,85 @@ bool exactly_coplanar(const std::vector<Vec3>& pts) {
   return true;
 }
 
-SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, bool measures) {
+namespace {
+
+// val3dity's rules for a face with holes, which it leaves to GEOS (IsValidOp on the rings
+// projected onto the face's plane), with exact predicates on the same projection: rings crossing
+// or running along each other (201), a hole outside the outer ring (206), a hole inside another
+// (207), holes touching the outer ring or each other so that they cut the face in two (205, e.g.
+// a hole touching the outer ring at two vertices). Rings may touch at single points. 0 = valid.
+int polygon_rings_rule(const std::vector<CGAL::Polygon_2<K>>& rings) {
+  using P2 = K::Point_2;
+  using S2 = K::Segment_2;
+  // Touch points: a point where two rings meet, and the rings meeting there.
+  std::map<P2, std::set<size_t>> touches;
+  for (size_t i = 0; i < rings.size(); ++i)
+    for (size_t j = i + 1; j < rings.size(); ++j)
+      for (auto a = rings[i].edges_begin(); a != rings[i].edges_end(); ++a)
+        for (auto b = rings[j].edges_begin(); b != rings[j].edges_end(); ++b) {
+          const S2 &sa = *a, &sb = *b;
+          if (!CGAL::do_intersect(sa, sb)) continue;
+          const auto on = [](const S2& s, const P2& q) { return s.has_on(q); };
+          std::vector<P2> at;  // the endpoints where they meet
+          for (const P2& q : {sa.source(), sa.target()})
+            if (on(sb, q)) at.push_back(q);
+          for (const P2& q : {sb.source(), sb.target()})
+            if (on(sa, q)) at.push_back(q);
+          if (at.empty()) return solid_code::kIntersectionRings;  // a proper crossing
+          std::sort(at.begin(), at.end());
+          at.erase(std::unique(at.begin(), at.end()), at.end());
+          if (at.size() > 1) return solid_code::kIntersectionRings;  // along each other
+          touches[at[0]].insert(i), touches[at[0]].insert(j);
+        }
+  // A point of ring `r` off ring `boundary`'s boundary (the first one; every point of a ring that
+  // only touches the other lies on one side of it).
+  const auto inside = [&](size_t r, size_t boundary) {
+    for (auto v = rings[r].vertices_begin(); v != rings[r].vertices_end(); ++v) {
+      const CGAL::Bounded_side side = rings[boundary].bounded_side(*v);
+      if (side != CGAL::ON_BOUNDARY) return side == CGAL::ON_BOUNDED_SIDE;
+    }
+    return true;  // on it all along (not reached after the tests above)
+  };
+  for (size_t h = 1; h < rings.size(); ++h)
+    if (!inside(h, 0)) return solid_code::kInnerRingOutside;
+  for (size_t h = 1; h < rings.size(); ++h)
+    for (size_t g = 1; g < rings.size(); ++g)
+      if (g != h && inside(h, g)) return solid_code::kInnerRingsNested;
+  // Rings and touch points as a graph: a cycle encloses part of the face.
+  UnionFind graph(static_cast<uint32_t>(rings.size() + touches.size()));
+  uint32_t node = static_cast<uint32_t>(rings.size());
+  for (const auto& [point, at] : touches) {
+    for (size_t r : at) {
+      if (graph.find(static_cast<uint32_t>(r)) == graph.find(node)) return solid_code::kInteriorDisconnected;
+      graph.link(static_cast<uint32_t>(r), node);
+    }
+    ++node;
+  }
+  return 0;
+}
+
+// The checks, on vertices already merged (`id`: each input vertex's merged index into `pts`).
+SolidCheck check_merged(const PolygonMesh& solid, const std::vector<uint32_t>& id, std::vector<Vec3> pts,
+                        const SolidTolerances& tol, bool measures) {
   SolidCheck out;
   ErrorLog log;
-  std::vector<Vec3>& pts = out.shell.points;
-  const std::vector<uint32_t> id = merge_vertices(solid.vertices, tol.snap, pts);
-  for (const auto& p : pts) out.box.add(p);
+  out.shell.points = std::move(pts);
+  const std::vector<Vec3>& p3 = out.shell.points;
+  for (const auto& p : p3) out.box.add(p);
 
-  // Rings (1xx): merged ids, no repeated consecutive vertex (a repeated first vertex at the
-  // end counts: CityJSON rings are not closed explicitly).
+  // Rings (1xx), as val3dity reads them: merged ids; fewer than 3 points (101), else a vertex
+  // repeated consecutively (102; CityJSON rings are not closed explicitly, so a first vertex
+  // repeated at the end counts).
   std::vector<std::vector<std::vector<uint32_t>>> faces;
+  std::vector<size_t> face_index;  // input face of each entry of `faces`
   std::vector<Vec3> normals;
+  // With val3dity's face rules: each face's triangles as val3dity makes them (empty: ours).
+  std::vector<std::vector<std::array<uint32_t, 3>>> val3dity_tris;
+  std::vector<std::array<uint32_t, 3>> face_tris;
   for (size_t fi = 0; fi < solid.faces.size(); ++fi) {
     std::vector<std::vector<uint32_t>> rings;
     bool face_ok = true;
+    face_tris.clear();
     for (size_t r = 0; r < solid.faces[fi].rings.size(); ++r) {
       const auto& in = solid.faces[fi].rings[r];
       const std::string where = "face " + std::to_string(fi) + ", ring " + std::to_string(r);
@@ -569,17 +712,22 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
         }
         ring.push_back(id[v]);
       }
+      if (ring.size() < 3) {
+        log.add(solid_code::kTooFewPoints, where + " has " + std::to_string(ring.size()) + " points");
+        out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
+        face_ok = false;
+        continue;
+      }
       bool repeats = false;
       for (size_t i = 0; i < ring.size(); ++i) repeats = repeats || ring[i] == ring[(i + 1) % ring.size()];
       if (repeats) {
         log.add(solid_code::kConsecutivePointsSame, where + " repeats a vertex consecutively");
+        out.bad_faces.emplace_back(fi, solid_code::kConsecutivePointsSame);
         ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
         while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
       }
-      if (repeats) out.bad_faces.emplace_back(fi, solid_code::kConsecutivePointsSame);
       if (ring.size() < 3) {
-        log.add(solid_code::kTooFewPoints,
-                where + " has " + std::to_string(ring.size()) + " distinct points");
+        // Only the repeat is val3dity's error; the ring is gone all the same.
         out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
         face_ok = false;
         continue;
@@ -587,86 +735,117 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
       rings.push_back(std::move(ring));
     }
     if (!face_ok || rings.empty()) continue;
+    // Polygon (2xx): planarity against the least-squares plane of all its points.
+    std::vector<Vec3> fp;
+    for (const auto& ring : rings)
+      for (uint32_t v : ring) fp.push_back(p3[v]);
+    Vec3 c;
+    for (const auto& p : fp) c += p;
+    c = c / static_cast<double>(fp.size());
+    std::vector<Vec3> centred;
+    for (const auto& p : fp) centred.push_back(p - c);  // fit in local coordinates (precision)
+    const Plane pl = fit_plane(centred);
+    double worst = 0;
+    for (const auto& p : centred) worst = std::max(worst, std::abs(pl.signed_distance(p)));
+    const bool planar = worst <= tol.planarity || fp.size() == 3;
+    const std::string where = "face " + std::to_string(fi);
+    const std::string off_plane = where + ": a point lies " + fmt(worst) +
+                                  " m from the face's plane (tolerance " + fmt(tol.planarity) + " m)";
     if (tol.normals_deg > 0) {
       // val3dity's polygon rules, in coordinates local to the face (city coordinates are large).
-      const Vec3 o = pts[rings[0][0]];
-      std::vector<K::Point_3> local(pts.size());
+      const Vec3 o = p3[rings[0][0]];
+      std::vector<K::Point_3> local(p3.size());
       for (const auto& ring : rings)
-        for (uint32_t v : ring) local[v] = K::Point_3(pts[v].x - o.x, pts[v].y - o.y, pts[v].z - o.z);
-      const std::string where = "face " + std::to_string(fi);
+        for (uint32_t v : ring) local[v] = K::Point_3(p3[v].x - o.x, p3[v].y - o.y, p3[v].z - o.z);
       if (rings.size() == 1 && rings[0].size() == 3 &&
           CGAL::collinear(local[rings[0][0]], local[rings[0][1]], local[rings[0][2]])) {
         log.add(solid_code::kRingSelfIntersection, where + ": a triangle collapsed to a line");
         out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
         continue;
       }
-      if (!projected_rings_simple(rings, local)) {
-        log.add(solid_code::kRingSelfIntersection,
-                where + ": a ring touches or crosses itself, or has no area, in the face's plane");
+      // val3dity tests the distance to the plane first and says no more about a face beyond it.
+      const std::vector<CGAL::Polygon_2<K>> projected = projected_rings(rings, local);
+      if (!rings_simple(projected)) {
+        if (planar) {
+          log.add(solid_code::kRingSelfIntersection,
+                  where + ": a ring touches or crosses itself, or has no area, in the face's plane");
+        } else {
+          log.add(solid_code::kNonPlanarPolygon, off_plane);
+        }
         out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
         continue;
       }
-      const double dev = triangle_normals_deviation_deg(rings, local);
+      if (planar && rings.size() > 1) {
+        if (const int code = polygon_rings_rule(projected)) {
+          const char* what = code == solid_code::kIntersectionRings
+                                 ? "its rings cross or run along each other"
+                             : code == solid_code::kInnerRingOutside ? "a hole lies outside the outer ring"
+                             : code == solid_code::kInnerRingsNested ? "a hole lies inside another hole"
+                                                                     : "its holes cut the face in two";
+          log.add(code, where + ": " + what + " in the face's plane");
+          out.bad_faces.emplace_back(fi, code);
+          if (code == solid_code::kIntersectionRings) continue;
+        }
+      }
+      if (!val3dity_triangles(rings, local, face_tris)) face_tris.clear();
+      const double dev = face_tris.empty() ? -1 : triangle_normals_deviation_deg(face_tris, local);
       if (dev > tol.normals_deg) {
         log.add(solid_code::kNonPlanarNormals, where + ": its triangles' normals differ by " + fmt(dev) +
                                                    " degrees (tolerance " + fmt(tol.normals_deg) + ")");
         out.bad_faces.emplace_back(fi, solid_code::kNonPlanarNormals);
       }
     }
-    // Polygon (2xx): planarity against the least-squares plane of all its points.
-    std::vector<Vec3> fp;
-    for (const auto& ring : rings)
-      for (uint32_t v : ring) fp.push_back(pts[v]);
-    Vec3 c;
-    for (const auto& p : fp) c += p;
-    c = c / static_cast<double>(fp.size());
-    std::vector<Vec3> local;
-    for (const auto& p : fp) local.push_back(p - c);  // fit in local coordinates (precision)
-    const Plane pl = fit_plane(local);
-    double worst = 0;
-    for (const auto& p : local) worst = std::max(worst, std::abs(pl.signed_distance(p)));
-    const Vec3 n = newell(rings[0], pts);
+    const Vec3 n = newell(rings[0], p3);
     if (norm(n) <= 1e-12) {
       // No area: a bow-tie (its halves cancel) or a collapsed ring.
       bool crosses = false;
       for (const auto& ring : rings) {
         CDT cdt;
         try {
-          insert_ring(cdt, ring, pts, frame_for(pts[ring[0]], pl.n));
+          insert_ring(cdt, ring, p3, frame_for(p3[ring[0]], pl.n));
         } catch (const CDT::Intersection_of_constraints_exception&) { crosses = true; }
       }
-      if (crosses)
-        log.add(solid_code::kRingSelfIntersection, "face " + std::to_string(fi) + ": a ring crosses itself");
-      else log.add(solid_code::kRingCollapsed, "face " + std::to_string(fi) + ": the outer ring has no area");
+      if (crosses) log.add(solid_code::kRingSelfIntersection, where + ": a ring crosses itself");
+      else log.add(solid_code::kRingCollapsed, where + ": the outer ring has no area");
       out.bad_faces.emplace_back(fi,
                                  crosses ? solid_code::kRingSelfIntersection : solid_code::kRingCollapsed);
       continue;
     }
-    if (worst > tol.planarity) out.bad_faces.emplace_back(fi, solid_code::kNonPlanarPolygon);
-    if (worst > tol.planarity)
-      log.add(solid_code::kNonPlanarPolygon, "face " + std::to_string(fi) + ": a point lies " + fmt(worst) +
-                                                 " m from the face's plane (tolerance " + fmt(tol.planarity) +
-                                                 " m)");
+    if (!planar) {
+      out.bad_faces.emplace_back(fi, solid_code::kNonPlanarPolygon);
+      log.add(solid_code::kNonPlanarPolygon, off_plane);
+    }
     out.area += norm(n) / 2;
     faces.push_back(std::move(rings));
+    face_index.push_back(fi);
     normals.push_back(n);
+    val3dity_tris.push_back(face_tris);
   }
   for (size_t fi = 0; fi < faces.size(); ++fi)
-    for (size_t r = 1; r < faces[fi].size(); ++r) out.area -= norm(newell(faces[fi][r], pts)) / 2;
+    for (size_t r = 1; r < faces[fi].size(); ++r) out.area -= norm(newell(faces[fi][r], p3)) / 2;
 
-  // Shell (3xx): topology on the ring edges, then triangles for volume and intersections.
+  // Shell (3xx): the faces' triangles as val3dity builds them into a shell, then volume and
+  // intersections.
   if (faces.size() < 4)
     log.add(solid_code::kTooFewPolygons, std::to_string(faces.size()) + " valid faces (at least 4 needed)");
-  const bool edges_ok = check_topology(faces, pts, log);
-  for (size_t fi = 0; fi < faces.size(); ++fi)
-    triangulate_face(faces[fi], pts, normals[fi], fi, log, out.shell.triangles);
-  if (edges_ok) check_vertex_fans(out.shell.triangles, pts, log);
+  std::vector<size_t> tri_face;
+  for (size_t fi = 0; fi < faces.size(); ++fi) {
+    const size_t before = out.shell.triangles.size();
+    triangulate_face(faces[fi], p3, normals[fi], face_index[fi], log, out.shell.triangles);
+    if (!val3dity_tris[fi].empty()) {
+      out.shell.triangles.resize(before);
+      out.shell.triangles.insert(out.shell.triangles.end(), val3dity_tris[fi].begin(),
+                                 val3dity_tris[fi].end());
+    }
+    tri_face.resize(out.shell.triangles.size(), face_index[fi]);
+  }
+  if (faces.size() >= 4) check_shell_topology(p3, out.shell.triangles, tri_face, log);
 
   // Non-planarity within reason does not stop the shell checks (the faces are triangulated).
   const bool topology_ok = log.only({solid_code::kNonPlanarPolygon, solid_code::kNonPlanarNormals});
   // Hull and convexity are measures, wanted whatever the validity.
   if (measures) {
-    const Hull hull = convex_hull(pts);
+    const Hull hull = convex_hull(p3);
     out.hull_volume = hull.volume;
     out.hull_facets = hull.facets;
   }
@@ -676,12 +855,9 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
   }
   const Vec3 o = out.box.center();
   double six_v = 0;
-  for (const auto& t : out.shell.triangles) six_v += dot(pts[t[0]] - o, cross(pts[t[1]] - o, pts[t[2]] - o));
+  for (const auto& t : out.shell.triangles) six_v += dot(p3[t[0]] - o, cross(p3[t[1]] - o, p3[t[2]] - o));
   out.volume = six_v / 6;
   if (out.hull_volume > 0) out.convexity = std::min(1.0, std::max(0.0, out.volume / out.hull_volume));
-  if (!(out.volume > 0))
-    log.add(solid_code::kAllPolygonsWrongOrientation,
-            "the faces point inwards (signed volume " + fmt(out.volume) + " m³)");
 
   bool mesh_ok = false;
   const Mesh m = to_mesh(out.shell, mesh_ok);
@@ -705,9 +881,39 @@ SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, boo
                                                       tri(pairs[0].first) + " and " + tri(pairs[0].second));
     }
   }
+  // The Solid's orientation, checked by val3dity once its shell is valid (405).
+  if (!log.has(solid_code::kShellSelfIntersection) && !(out.volume > 0))
+    log.add(solid_code::kWrongOrientationShell,
+            "the faces point inwards (signed volume " + fmt(out.volume) + " m³)");
   out.closed_manifold =
-      !log.has(solid_code::kShellSelfIntersection) && !log.has(solid_code::kAllPolygonsWrongOrientation);
+      !log.has(solid_code::kShellSelfIntersection) && !log.has(solid_code::kWrongOrientationShell);
   out.errors = log.take();
+  return out;
+}
+
+}  // namespace
+
+SolidCheck check_solid(const PolygonMesh& solid, const SolidTolerances& tol, bool measures) {
+  std::vector<Vec3> pts;
+  const std::vector<uint32_t> id = merge_vertices(solid.vertices, tol.snap, pts, tol.snap_strict);
+  SolidCheck out = check_merged(solid, id, std::move(pts), tol, measures);
+  if (tol.snap_apart > 0 && out.valid()) {
+    // The same solid with the vertices merged only up to `snap_apart`: where that keeps some
+    // apart, it must be valid that way too.
+    std::vector<Vec3> apart_pts;
+    const std::vector<uint32_t> apart = merge_vertices(solid.vertices, tol.snap_apart, apart_pts);
+    if (apart != id) {
+      SolidTolerances t = tol;
+      t.snap = tol.snap_apart;
+      const SolidCheck other = check_merged(solid, apart, std::move(apart_pts), t, false);
+      for (const SolidError& e : other.errors)
+        out.errors.push_back({e.code, e.name,
+                              e.message + " (with the vertices " + fmt(tol.snap_apart) + " m to " +
+                                  fmt(tol.snap) + " m apart not merged, as val3dity may not merge them)"});
+      out.bad_faces.insert(out.bad_faces.end(), other.bad_faces.begin(), other.bad_faces.end());
+      if (!other.valid()) out.closed_manifold = false;
+    }
+  }
   return out;
 }
 
@@ -810,6 +1016,67 @@ std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell&
       return common.is_empty() ? Common{} : Common{std::abs(PMP::volume(common)), PMP::area(common)};
   } catch (const std::exception&) {}
   return common_volume_by_faces(a, b);
+}
+
+namespace {
+
+// Is every point of `b` on or beyond the plane of a facet of `a`'s convex hull? Exact predicates
+// on the hull's own vertices: then the interiors cannot meet.
+bool hull_facet_separates(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  std::vector<K::Point_3> pa, pb;
+  for (const Vec3& p : a) pa.emplace_back(p.x, p.y, p.z);
+  for (const Vec3& p : b) pb.emplace_back(p.x, p.y, p.z);
+  Mesh hull;
+  CGAL::convex_hull_3(pa.begin(), pa.end(), hull);
+  if (hull.number_of_faces() == 0) return false;  // flat: no facet to test
+  for (auto f : hull.faces()) {
+    std::array<K::Point_3, 3> t;
+    int i = 0;
+    for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull))
+      if (i < 3) t[i++] = hull.point(v);
+    // Outward facets: the hull lies on the negative side of each.
+    if (std::all_of(pb.begin(), pb.end(), [&](const K::Point_3& q) {
+          return CGAL::orientation(t[0], t[1], t[2], q) != CGAL::NEGATIVE;
+        }))
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool interiors_overlap(const TriangleShell& a, const TriangleShell& b, size_t* exact_tests) {
+  BBox ba, bb;
+  for (const Vec3& p : a.points) ba.add(p);
+  for (const Vec3& p : b.points) bb.add(p);
+  for (int axis = 0; axis < 3; ++axis)
+    if (ba.hi[axis] <= bb.lo[axis] || bb.hi[axis] <= ba.lo[axis]) return false;  // at most touching
+  if (hull_facet_separates(a.points, b.points) || hull_facet_separates(b.points, a.points)) return false;
+  if (exact_tests) ++*exact_tests;
+  using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+  using EMesh = CGAL::Surface_mesh<EK::Point_3>;
+  const auto exact_mesh = [](const TriangleShell& s) {
+    std::vector<EK::Point_3> points;
+    for (const auto& p : s.points) points.emplace_back(p.x, p.y, p.z);
+    std::vector<std::vector<std::size_t>> polys;
+    for (const auto& t : s.triangles) polys.push_back({t[0], t[1], t[2]});
+    EMesh m;
+    PMP::polygon_soup_to_polygon_mesh(points, polys, m);
+    return m;
+  };
+  EMesh ma = exact_mesh(a), mb = exact_mesh(b);
+  // The common part by corefinement with exact constructions: the interiors meet when it has volume.
+  try {
+    EMesh common;
+    EMesh ca = ma, cb = mb;
+    if (PMP::corefine_and_compute_intersection(ca, cb, common))
+      return !common.is_empty() && PMP::volume(common) > 0;
+  } catch (const std::exception&) {}
+  // A common part that is not a 2-manifold (two pieces meeting at an edge): val3dity's own test,
+  // Nef polyhedra.
+  using Nef = CGAL::Nef_polyhedron_3<EK>;
+  const Nef na(ma), nb(mb);
+  return !(na.interior() * nb.interior()).is_empty();
 }
 
 }  // namespace mc

@@ -20,32 +20,53 @@ struct SolidError {
   std::string message;  // what and where (face index, coordinates, measured value)
 };
 
-// val3dity's codes used here.
+// val3dity's codes used here (val3dity 2.6's numbering).
 namespace solid_code {
 constexpr int kTooFewPoints = 101, kConsecutivePointsSame = 102, kRingSelfIntersection = 104,
               kRingCollapsed = 105, kIntersectionRings = 201, kNonPlanarPolygon = 203,
-              kNonPlanarNormals = 204, kOrientationRingsSame = 208, kTooFewPolygons = 301,
-              kShellNotClosed = 302, kNonManifoldCase = 303, kPolygonWrongOrientation = 304,
-              kMultipleComponents = 305, kShellSelfIntersection = 306, kAllPolygonsWrongOrientation = 307;
+              kNonPlanarNormals = 204, kInteriorDisconnected = 205, kInnerRingOutside = 206,
+              kInnerRingsNested = 207, kOrientationRingsSame = 208, kNotValid2Manifold = 300,
+              kTooFewPolygons = 301, kShellNotClosed = 302, kNonManifoldCase = 303, kMultipleComponents = 305,
+              kShellSelfIntersection = 306, kPolygonWrongOrientation = 307, kWrongOrientationShell = 405;
 }
 const char* solid_error_name(int code);
 
 struct SolidTolerances {
-  double snap = 1e-6;       // vertices closer than this are one vertex (m)
+  double snap = 1e-6;       // vertices this close are one vertex (m): distance <= snap
   double planarity = 1e-3;  // max distance of a face's points to its least-squares plane (m)
   // Max angle (degrees) between the normals of the triangles of one face, triangulated in its
   // least-squares plane (val3dity's 204 rule); 0 = not checked. With it, rings are also checked
   // for simplicity in that plane's projection (val3dity's 104 rule: a ring touching itself at a
-  // vertex, or collapsed to a line). docs/output-format.md §Validity.
+  // vertex, or collapsed to a line) and faces with holes by val3dity's (GEOS's) polygon rules
+  // (201, 205, 206, 207). docs/output-format.md §Validity.
   double normals_deg = 0;
+  // val3dity's own merge test instead of distance <= snap: squared distance < snap² on the
+  // coordinates as given, each vertex merged into the first earlier one that is that close.
+  // Vertices exactly one grid step apart (1 mm at a 1 mm grid) are then merged or not as the
+  // file's coordinates round, as val3dity does (`morphcut-city validate`).
+  bool snap_strict = false;
+  // > 0: the solid must also be valid with vertices merged only up to this distance. The writer
+  // checks in a metric frame before the coordinates are written in the file's CRS, so it cannot
+  // know how val3dity will round a pair exactly at the snap distance: it wants parts valid both
+  // with such pairs merged (`snap`) and apart (`snap_apart`).
+  double snap_apart = 0;
 };
-// val3dity's default tolerances, made slightly stricter where it decides by a strict comparison
-// on rounded coordinates: vertices up to 1 mm apart are one vertex. Every written part passes them.
-// Vertices within `snap` of each other become one (grid hashing, neighbouring cells searched), in
-// the order given: returns each vertex's merged index; `merged` gets the merged positions.
-std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged);
+// Vertices within `snap` of each other become one, in the order given: each vertex joins the
+// first earlier merged vertex that close (val3dity's Surface::add_point), else starts a new one.
+// `strict`: squared distance < snap² (val3dity's comparison), else distance <= snap. Returns each
+// vertex's merged index; `merged` gets the merged positions.
+std::vector<uint32_t> merge_vertices(const std::vector<Vec3>& v, double snap, std::vector<Vec3>& merged,
+                                     bool strict = false);
 
-inline SolidTolerances val3dity_tolerances() { return {0.001 * (1 + 1e-6), 0.01, 20}; }
+// val3dity's default tolerances as the writer applies them: vertices up to 1 mm apart are one
+// vertex (a comparison on rounded coordinates decides exactly 1 mm either way, so a part must be
+// valid with vertices 1 mm apart merged and kept apart). Every written part passes them.
+inline SolidTolerances val3dity_tolerances() {
+  return {0.001 * (1 + 1e-6), 0.01, 20, false, 0.001 * (1 - 1e-6)};
+}
+// val3dity's default tolerances and its own merge test, to report what val3dity reports on the
+// coordinates of a file (`morphcut-city validate`).
+inline SolidTolerances val3dity_exact_tolerances() { return {0.001, 0.01, 20, true, 0}; }
 
 // The shell as triangles over merged vertices (faces triangulated in their plane, holes kept),
 // oriented like the input faces.
@@ -96,6 +117,11 @@ struct Common {
   double volume = 0, area = 0;
 };
 std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell& b);
+// Do the interiors of two solids with closed_manifold intersect? val3dity's BUILDINGPARTS_OVERLAP
+// test (601), exact on the coordinates as given: any common volume, however thin. `exact_tests`
+// counts the pairs that needed exact constructions (the others are told apart by their boxes or
+// a convex hull facet with exact predicates).
+bool interiors_overlap(const TriangleShell& a, const TriangleShell& b, size_t* exact_tests = nullptr);
 // The fallback common_volume uses when the boolean's result is not a 2-manifold: both shells
 // corefined, the faces bounding the common part picked and integrated (divergence theorem). When
 // the picked faces do not close up (near-coplanar contact; detected as a result that depends on

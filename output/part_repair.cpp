@@ -266,6 +266,15 @@ bool close_on_grid(std::vector<GridFace>& faces, const std::vector<Vec3>& pool, 
   }
   faces.erase(std::remove_if(faces.begin(), faces.end(), [](const GridFace& f) { return f.rings.empty(); }),
               faces.end());
+  // The vertices merged are written as one: val3dity merges two vertices exactly the snap distance
+  // apart or not as the file's coordinates round, so the part must not need it to.
+  for (GridFace& f : faces)
+    for (auto& ring : f.rings)
+      for (int64_t& id : ring) {
+        const int64_t one = first_id[same(id)];
+        changed |= one != id;
+        id = one;
+      }
   for (int round = 0; round < 4; ++round) {
     std::set<std::pair<uint32_t, uint32_t>> edges;
     std::set<uint32_t> used;

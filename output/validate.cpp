@@ -237,29 +237,41 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
   double first_area = 0, first_level = 0;
   for (double t : levels) {
     const auto& idx = by_level[t];
-    // Overlaps: every pair of valid parts whose hulls are not apart.
+    // Overlaps: every pair of valid parts, as val3dity tests them (exact), or with a volume
+    // tolerance when one is given.
     for (size_t a = 0; a < idx.size(); ++a)
       for (size_t b = a + 1; b < idx.size(); ++b) {
         Part &pa = parts[idx[a]], &pb = parts[idx[b]];
         if (!pa.check.closed_manifold || !pb.check.closed_manifold) continue;
-        // Apart by more than the 1 mm output grid: no common volume to compute.
-        if (hulls_separated(pa.check, pb.check, 1e-3)) continue;
-        ++counts.overlap_tests;
-        const std::optional<Common> common = common_volume(pa.check.shell, pb.check.shell);
-        // Touching parts share faces whose vertices were rounded to the grid independently of
-        // how each part triangulates them: slivers up to the quantisation bound of the contact
-        // (at most the smaller surface) are touching, not overlap.
-        const double tol = opt.overlap + quantisation_bound(std::min(pa.check.area, pb.check.area), scale);
-        if (!common) {
-          add(building, vc::kOverlapNotComputed,
-              "level " + num(t) + ": the common volume of " + pa.id + " and " + pb.id +
-                  " could not be computed exactly");
-        } else if (common->volume > tol) {
-          const std::string what = " m³ in common, " + num(2 * common->volume / common->area) +
-                                   " m thick on average (tolerance " + num(tol) + " m³)";
-          add(pa.report, vc::kPartsOverlap, "overlaps " + pb.id + ": " + num(common->volume) + what);
-          add(pb.report, vc::kPartsOverlap, "overlaps " + pa.id + ": " + num(common->volume) + what);
+        std::optional<Common> common;
+        double tol = 0;
+        if (opt.overlap <= 0) {
+          if (!interiors_overlap(pa.check.shell, pb.check.shell, &counts.overlap_tests)) continue;
+          common = common_volume(pa.check.shell, pb.check.shell);
+          if (!common) common = Common{};  // the exact test found it; its size is unknown
+        } else {
+          // Apart by more than the 1 mm output grid: no common volume to compute.
+          if (hulls_separated(pa.check, pb.check, 1e-3)) continue;
+          ++counts.overlap_tests;
+          common = common_volume(pa.check.shell, pb.check.shell);
+          // Touching parts share faces whose vertices were rounded to the grid independently of
+          // how each part triangulates them: slivers up to the quantisation bound of the contact
+          // (at most the smaller surface) are touching, not overlap.
+          tol = opt.overlap + quantisation_bound(std::min(pa.check.area, pb.check.area), scale);
+          if (!common) {
+            add(building, vc::kOverlapNotComputed,
+                "level " + num(t) + ": the common volume of " + pa.id + " and " + pb.id +
+                    " could not be computed exactly");
+            continue;
+          }
+          if (common->volume <= tol) continue;
         }
+        const std::string what =
+            " m³ in common" +
+            (common->area > 0 ? ", " + num(2 * common->volume / common->area) + " m thick on average" : "") +
+            (opt.overlap > 0 ? " (tolerance " + num(tol) + " m³)" : " (exact test)");
+        add(pa.report, vc::kPartsOverlap, "overlaps " + pb.id + ": " + num(common->volume) + what);
+        add(pb.report, vc::kPartsOverlap, "overlaps " + pa.id + ": " + num(common->volume) + what);
       }
     // Volumes: only when every part of the level is a valid closed solid (else already reported).
     double sum = 0, area = 0;
@@ -324,7 +336,9 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
   }
   const std::vector<Vec3>& vertices = frame.identity() ? f.vertices : metric_copy;
   const double scale = grid_step_metres(t, frame, f.vertices.empty() ? Vec3{} : f.vertices.front());
-  const SolidTolerances stol{opt.snap, opt.planarity, opt.normals_deg};
+  // val3dity's merge test on the coordinates as read (in metres for a non-metric CRS, where
+  // val3dity's tolerances in the file's units would mean something else).
+  const SolidTolerances stol{opt.snap, opt.planarity, opt.normals_deg, true, 0};
   std::vector<ObjectReport> out;
   std::set<std::string> emitted;
   const bool building = mc::io::is_building(f);

@@ -14,13 +14,18 @@
 
 namespace mc::output {
 
-// The Solid rules default to val3dity's default tolerances (core/solid_validation.hpp), the ones
-// every written part passes (docs/output-format.md §Validity).
+// The Solid rules default to val3dity's default tolerances and its own vertex merge test
+// (core/solid_validation.hpp, val3dity_exact_tolerances), and overlaps to its exact test, so that
+// a report says what val3dity says about the file (docs/output-format.md §Validity).
 struct ValidateOptions {
-  double planarity = val3dity_tolerances().planarity;  // m: face points off the face's least-squares plane
-  double normals_deg = val3dity_tolerances().normals_deg;  // degrees between a face's triangles' normals
-  double overlap = 1e-3;  // m³: common volume of two parts of one level that is still "touching"
-  double snap = val3dity_tolerances().snap;  // m: vertices this close are one vertex
+  double planarity =
+      val3dity_exact_tolerances().planarity;  // m: face points off the face's least-squares plane
+  double normals_deg =
+      val3dity_exact_tolerances().normals_deg;  // degrees between a face's triangles' normals
+  // m³: common volume two parts of one level may have and still only touch; 0 = val3dity's exact
+  // test (any common interior is an overlap).
+  double overlap = 0;
+  double snap = val3dity_exact_tolerances().snap;  // m: vertices closer than this are one vertex
   double volume_rel = 1e-6;  // relative tolerance of volume sums (the quantisation bound is added)
 };
 
@@ -57,7 +62,7 @@ struct ValidationCounts {
   size_t buildings = 0, buildings_with_parts = 0, buildings_without_parts = 0, invalid_buildings = 0;
   size_t parts = 0, valid_parts = 0, invalid_parts = 0;
   size_t other_invalid_objects = 0;  // input objects with structure errors
-  size_t overlap_tests = 0;          // part pairs whose common volume was computed exactly
+  size_t overlap_tests = 0;          // part pairs whose overlap needed exact constructions
   // Largest |sum of a level's part volumes - cell volume| / cell volume seen (how tight the
   // volume check really is, next to its tolerance).
   double max_volume_deviation = 0;

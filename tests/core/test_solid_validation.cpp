@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
 #include "core/solid_validation.hpp"
 
@@ -117,16 +118,20 @@ TEST(SolidValidation, InwardFacesAreWronglyOriented) {
   PolygonMesh m = unit_cube();
   for (auto& f : m.faces) std::reverse(f.rings[0].begin(), f.rings[0].end());
   const SolidCheck c = check_solid(m);
-  EXPECT_EQ(codes(c), std::vector<int>{307}) << describe(c);
+  EXPECT_EQ(codes(c), std::vector<int>{405}) << describe(c);
+  EXPECT_EQ(c.errors[0].name, "WRONG_ORIENTATION_SHELL");
   EXPECT_NEAR(c.volume, -1.0, 1e-12);
   EXPECT_FALSE(c.closed_manifold);
 }
 
 TEST(SolidValidation, OneFlippedFace) {
+  // The top face's triangles go in first; the sides that meet them in the same direction do not
+  // fit, reversed (307) or not at all (303), as their triangles come.
   PolygonMesh m = unit_cube();
   std::reverse(m.faces[1].rings[0].begin(), m.faces[1].rings[0].end());
   const SolidCheck c = check_solid(m);
-  EXPECT_EQ(codes(c), std::vector<int>{304}) << describe(c);
+  ASSERT_FALSE(c.valid());
+  for (int code : codes(c)) EXPECT_TRUE(code == 303 || code == 307) << describe(c);
 }
 
 TEST(SolidValidation, ShellThroughItself) {
@@ -169,11 +174,12 @@ TEST(SolidValidation, NonPlanarQuadBeyondTheToleranceOnly) {
 
 TEST(SolidValidation, CubesSharingAnEdgeOrAVertexAreNotManifold) {
   const SolidCheck edge = check_solid(merged(unit_cube(), box({1, 1, 0}, {2, 2, 1})));
-  EXPECT_TRUE(has(edge, 303)) << describe(edge);
-  EXPECT_NE(edge.errors[0].message.find("shared by 4 faces"), std::string::npos) << describe(edge);
+  EXPECT_EQ(codes(edge), std::vector<int>{303}) << describe(edge);
+  EXPECT_NE(edge.errors[0].message.find("face 6 would make an edge shared by more than two faces"),
+            std::string::npos)
+      << describe(edge);
   const SolidCheck vertex = check_solid(merged(unit_cube(), box({1, 1, 1}, {2, 2, 2})));
-  EXPECT_TRUE(has(vertex, 303)) << describe(vertex);
-  EXPECT_NE(vertex.errors[0].message.find("separate fans"), std::string::npos) << describe(vertex);
+  EXPECT_EQ(codes(vertex), std::vector<int>{303}) << describe(vertex);
   const SolidCheck apart = check_solid(merged(unit_cube(), box({3, 0, 0}, {4, 1, 1})));
   EXPECT_EQ(codes(apart), std::vector<int>{305}) << describe(apart);
 }
@@ -212,6 +218,167 @@ TEST(SolidValidation, CommonVolumeTouchingOverlappingIdentical) {
   // A shell that is not a 2-manifold cannot be corefined: no number rather than a guess.
   EXPECT_FALSE(common_volume(
       a.shell, check_solid(merged(box({0, 0, 0}, {1, 1, 1}), box({1, 1, 0}, {2, 2, 1}))).shell));
+}
+
+// Hand-made parts on which val3dity 2.6.0 and check_solid once disagreed (tools/val3dity/
+// crosscheck.py, docs/reliability.md): coordinates on a grid of `scale` m as a CityJSON file holds
+// them (integer * scale + translate, as val3dity computes them), the expected codes val3dity's own.
+using GridPoint = std::array<int64_t, 3>;
+using GridFace = std::vector<std::vector<GridPoint>>;
+
+PolygonMesh grid_mesh(const std::vector<GridFace>& faces, const Vec3& translate, double scale = 0.001) {
+  PolygonMesh m;
+  std::map<GridPoint, uint32_t> index;  // vertices in order of first use, as the validators read them
+  for (const GridFace& f : faces) {
+    Polygon poly;
+    for (const auto& ring : f) {
+      std::vector<uint32_t> r;
+      for (const GridPoint& g : ring) {
+        auto [it, fresh] = index.try_emplace(g, static_cast<uint32_t>(m.vertices.size()));
+        if (fresh)
+          m.vertices.push_back({static_cast<double>(g[0]) * scale + translate.x,
+                                static_cast<double>(g[1]) * scale + translate.y,
+                                static_cast<double>(g[2]) * scale + translate.z});
+        r.push_back(it->second);
+      }
+      poly.rings.push_back(std::move(r));
+    }
+    m.faces.push_back(std::move(poly));
+  }
+  return m;
+}
+
+// An axis-aligned box (bottom, top, -y, +x, +y, -x), outward.
+std::vector<GridFace> grid_box(GridPoint lo, GridPoint hi) {
+  const auto p = [&](int i, int j, int k) {
+    return GridPoint{i ? hi[0] : lo[0], j ? hi[1] : lo[1], k ? hi[2] : lo[2]};
+  };
+  return {
+      {{p(0, 0, 0), p(0, 1, 0), p(1, 1, 0), p(1, 0, 0)}}, {{p(0, 0, 1), p(1, 0, 1), p(1, 1, 1), p(0, 1, 1)}},
+      {{p(0, 0, 0), p(1, 0, 0), p(1, 0, 1), p(0, 0, 1)}}, {{p(1, 0, 0), p(1, 1, 0), p(1, 1, 1), p(1, 0, 1)}},
+      {{p(1, 1, 0), p(0, 1, 0), p(0, 1, 1), p(1, 1, 1)}}, {{p(0, 1, 0), p(0, 0, 0), p(0, 0, 1), p(0, 1, 1)}}};
+}
+
+// The faces of a pit below a hole of a top face: one triangle from each hole edge to an apex
+// `depth` below the hole's centre.
+std::vector<GridFace> pyramid_pit(const std::vector<GridPoint>& hole, int64_t depth) {
+  GridPoint c{0, 0, hole[0][2] - depth};
+  for (const auto& h : hole) c[0] += h[0], c[1] += h[1];
+  c[0] /= static_cast<int64_t>(hole.size()), c[1] /= static_cast<int64_t>(hole.size());
+  std::vector<GridFace> out;
+  for (size_t i = 0; i < hole.size(); ++i) out.push_back({{hole[(i + 1) % hole.size()], hole[i], c}});
+  return out;
+}
+
+const Vec3 kLambert93{652417.613, 6862291.337, 35.21};  // where a French CityGML file's parts lie
+constexpr int64_t S = 10000;                            // 10 m at a 1 mm grid
+
+std::vector<int> val3dity_codes(const PolygonMesh& m) {
+  return codes(check_solid(m, val3dity_exact_tolerances()));
+}
+
+TEST(SolidValidation, VerticesOneGridStepApartAreMergedAsTheCoordinatesRound) {
+  // The top face's corner 1 mm off the sides' corner: val3dity merges the two when their squared
+  // distance, computed from the file's coordinates, is below 1e-6, which exactly 1 mm is or not
+  // as the coordinates round. Its 302 ("Location hole") was on such a part, which the old merge
+  // test (distance <= 1 mm) called closed.
+  std::vector<GridFace> f = grid_box({0, 0, 0}, {S, S, S});
+  f[1] = {{{0, 0, S}, {S + 1, 0, S}, {S, S, S}, {0, S, S}}};
+  EXPECT_EQ(val3dity_codes(grid_mesh(f, kLambert93)), std::vector<int>{302});
+  EXPECT_EQ(val3dity_codes(grid_mesh(f, {0, 0, 0})), std::vector<int>{});  // rounds below 1 mm
+  // The writer cannot know how the file's coordinates will round: either way is invalid for it.
+  for (const Vec3& t : {kLambert93, Vec3{0, 0, 0}}) {
+    const SolidCheck c = check_solid(grid_mesh(f, t), val3dity_tolerances());
+    EXPECT_EQ(codes(c), std::vector<int>{302}) << describe(c);
+  }
+  // 0.9 mm is one vertex and 1.1 mm two, for both.
+  for (const auto& [off, want] : {std::pair{9, std::vector<int>{}}, std::pair{11, std::vector<int>{302}}}) {
+    std::vector<GridFace> g = grid_box({0, 0, 0}, {10 * S, 10 * S, 10 * S});
+    g[1] = {{{0, 0, 10 * S}, {10 * S + off, 0, 10 * S}, {10 * S, 10 * S, 10 * S}, {0, 10 * S, 10 * S}}};
+    EXPECT_EQ(val3dity_codes(grid_mesh(g, kLambert93, 0.0001)), want) << off;
+    EXPECT_EQ(codes(check_solid(grid_mesh(g, kLambert93, 0.0001), val3dity_tolerances())), want) << off;
+  }
+}
+
+TEST(SolidValidation, AVertexMergesIntoTheEarliestCloseOne) {
+  // p is within the snap distance of two merged vertices 1.8 mm apart: val3dity takes the first
+  // in its list, whichever side it lies on.
+  for (const double first : {0.0009, -0.0009}) {
+    std::vector<Vec3> merged;
+    const auto id = merge_vertices({{first, 0, 0}, {-first, 0, 0}, {0, 0, 0}}, 0.001, merged, true);
+    EXPECT_EQ(id, (std::vector<uint32_t>{0, 1, 0})) << first;
+  }
+}
+
+TEST(SolidValidation, HoleCornerOnTheOuterRingsEdgeLeavesTheShellOpen) {
+  // The top face's hole touches the middle of its outer ring's edge at (4, 0): the face's
+  // triangles split that edge, the wall below does not, and val3dity's shell has a hole there.
+  std::vector<GridFace> f = grid_box({0, 0, 0}, {S, S, S});
+  const std::vector<GridPoint> hole{{4000, 0, S}, {2000, 2000, S}, {4000, 4000, S}, {6000, 2000, S}};
+  f[1].push_back(hole);
+  for (auto& pit : pyramid_pit(hole, 3000)) f.push_back(pit);
+  EXPECT_EQ(val3dity_codes(grid_mesh(f, kLambert93)), std::vector<int>{302});
+}
+
+TEST(SolidValidation, FacesWithHolesFollowGeosRules) {
+  // Outer ring with vertices at x = 4 m on both long edges; walls carry them too.
+  std::vector<GridFace> walls = grid_box({0, 0, 0}, {S, S, S});
+  walls[2] = {{{0, 0, 0}, {S, 0, 0}, {S, 0, S}, {4000, 0, S}, {0, 0, S}}};
+  walls[4] = {{{S, S, 0}, {0, S, 0}, {0, S, S}, {4000, S, S}, {S, S, S}}};
+  const std::vector<GridPoint> outer{{0, 0, S}, {4000, 0, S}, {S, 0, S}, {S, S, S}, {4000, S, S}, {0, S, S}};
+  // A hole touching the outer ring at two vertices cuts the face in two (205); the shell is fine.
+  const std::vector<GridPoint> diamond{{4000, 0, S}, {2000, S / 2, S}, {4000, S, S}, {6000, S / 2, S}};
+  std::vector<GridFace> f = walls;
+  f[1] = {outer, diamond};
+  for (auto& pit : pyramid_pit(diamond, 3000)) f.push_back(pit);
+  EXPECT_EQ(val3dity_codes(grid_mesh(f, kLambert93)), std::vector<int>{205});
+  // A hole beside the face (206), one inside another (207), the same hole twice (201).
+  const std::vector<GridPoint> beside{
+      {S + 2000, 2000, S}, {S + 2000, 6000, S}, {S + 6000, 6000, S}, {S + 6000, 2000, S}};
+  const std::vector<GridPoint> h1{{1000, 1000, S}, {1000, 8000, S}, {8000, 8000, S}, {8000, 1000, S}};
+  const std::vector<GridPoint> h2{{3000, 3000, S}, {3000, 5000, S}, {5000, 5000, S}, {5000, 3000, S}};
+  using Holes = std::vector<std::vector<GridPoint>>;
+  for (const auto& [holes, code] :
+       {std::pair{Holes{beside}, 206}, std::pair{Holes{h1, h2}, 207}, std::pair{Holes{h2, h2}, 201}}) {
+    std::vector<GridFace> g = grid_box({0, 0, 0}, {S, S, S});
+    for (const auto& h : holes) g[1].push_back(h);
+    const std::vector<int> c = val3dity_codes(grid_mesh(g, kLambert93));
+    ASSERT_FALSE(c.empty()) << code;
+    EXPECT_EQ(c.front(), code);  // (the shell checks that val3dity never reaches come after)
+  }
+}
+
+TEST(SolidValidation, ARepeatedVertexIsConsecutivePointsOnly) {
+  // A 4-point ring of two distinct points: val3dity's 102 (its 101 counts the ring's points).
+  std::vector<GridFace> f = grid_box({0, 0, 0}, {S, S, S});
+  f.push_back({{{S, 0, 0}, {S, 0, S}, {S, 0, S}, {S, 0, 0}}});
+  const PolygonMesh m = grid_mesh(f, kLambert93);
+  EXPECT_EQ(val3dity_codes(m), std::vector<int>{102});
+}
+
+TEST(SolidValidation, FlippedFaceAsVal3dityBuildsTheShell) {
+  // The top face reversed: its triangles go in second, after the bottom's; of the sides, the ones
+  // whose reversed triangles fit are 307, the others 303 (val3dity: 307 on faces 2 and 3, 303 on
+  // faces 4 and 5).
+  std::vector<GridFace> f = grid_box({0, 0, 0}, {S, S, S});
+  std::reverse(f[1][0].begin(), f[1][0].end());
+  const SolidCheck c = check_solid(grid_mesh(f, kLambert93), val3dity_exact_tolerances());
+  EXPECT_EQ(codes(c), (std::vector<int>{303, 307})) << describe(c);
+}
+
+TEST(SolidValidation, InteriorsOverlapExactly) {
+  const SolidCheck a = check_solid(grid_mesh(grid_box({0, 0, 0}, {S, S, S}), kLambert93));
+  const SolidCheck touching = check_solid(grid_mesh(grid_box({S, 0, 0}, {2 * S, S, S}), kLambert93));
+  // 1 mm x 1 m x 1 m = 0.001 m³ in common: below any volume tolerance, an overlap for val3dity.
+  const SolidCheck sliver =
+      check_solid(grid_mesh(grid_box({S - 1, 0, 0}, {S + 1000, 1000, 1000}), kLambert93));
+  const SolidCheck corner = check_solid(grid_mesh(grid_box({S, S, S}, {2 * S, 2 * S, 2 * S}), kLambert93));
+  ASSERT_TRUE(a.valid() && touching.valid() && sliver.valid() && corner.valid());
+  EXPECT_FALSE(interiors_overlap(a.shell, touching.shell));
+  EXPECT_FALSE(interiors_overlap(a.shell, corner.shell));
+  EXPECT_TRUE(interiors_overlap(a.shell, sliver.shell));
+  EXPECT_TRUE(interiors_overlap(sliver.shell, a.shell));
+  EXPECT_TRUE(interiors_overlap(a.shell, a.shell));
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 # val3dity (the field's reference validator, built outside the source tree by
 # tools/val3dity/build.sh) as an independent check of morphcut-city's output geometry.
 #
-# usage: tests/tools/run_val3dity_test.sh BUILD_DIR selftest|demo|tiles
+# usage: tests/tools/run_val3dity_test.sh BUILD_DIR selftest|demo|tiles|crosscheck
 #   selftest  tools/val3dity/check.py on hand-made CityJSON and CityJSONSeq files: an error on
 #             a morphcut part (and an overlap of two morphcut parts) is ours and fails (exit 1);
 #             errors on the input's own BuildingParts, also one with a morphcut-like id but no
@@ -13,11 +13,15 @@
 #             input's own geometry has.
 #   tiles     tools/validate_tiles.sh --val3dity on every public real file with buildings: every
 #             part valid for `morphcut-city validate` and no val3dity error on any of our parts.
+#   crosscheck  tools/val3dity/crosscheck.py: `morphcut-city validate` and val3dity must say the
+#             same about every part of the hand-made files of tools/val3dity/handmade_parts.py
+#             (one per way they could read a part differently, valid or not) and of every file
+#             morphcut-city writes for the 3D BAG tile.
 # Exit 0 pass, 1 fail, 77 skipped (the val3dity source tarball is not available).
 set -euo pipefail
 
-build="$(cd "${1:?usage: $0 BUILD_DIR selftest|demo}" && pwd)"
-mode="${2:?usage: $0 BUILD_DIR selftest|demo}"
+build="$(cd "${1:?usage: $0 BUILD_DIR selftest|demo|tiles|crosscheck}" && pwd)"
+mode="${2:?usage: $0 BUILD_DIR selftest|demo|tiles|crosscheck}"
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 check="$root/tools/val3dity/check.py"
 
@@ -165,6 +169,26 @@ tiles)
   [ "$fail" = 0 ] || exit 1
   echo "PASS: $total; $v3"
   ;;
+crosscheck)
+  python3 "$root/tools/val3dity/handmade_parts.py" "$tmp/handmade" || { echo "FAIL: handmade_parts.py"; exit 1; }
+  out="$tmp/demo/demo.morphcut.city.json"
+  mkdir -p "$tmp/demo"
+  set +e
+  "$build/tools/morphcut-city" "$root/datasets/3dbag/3dbag_5910.city.json" -o "$out" --threads 2 --no-html --no-gpkg
+  rc=$?
+  set -e
+  [ "$rc" -le 1 ] || { echo "FAIL: morphcut-city exited $rc"; exit 1; }
+  set +e
+  python3 "$root/tools/val3dity/crosscheck.py" --bin "$build/tools/morphcut-city" --val3dity "$v3" \
+    --keep "$tmp/reports" --json "$tmp/crosscheck.json" --jobs "$(nproc)" --dir "$tmp/handmade" --dir "$tmp/demo"
+  rc=$?
+  set -e
+  case "$rc" in
+    0) echo "PASS: morphcut-city validate and val3dity agree on every part" ;;
+    1) echo "FAIL: morphcut-city validate and val3dity disagree (listed above; reports in $tmp/reports)"; exit 1 ;;
+    *) echo "FAIL: crosscheck.py could not run the validators (exit $rc)"; exit 1 ;;
+  esac
+  ;;
 *)
-  echo "usage: $0 BUILD_DIR selftest|demo|tiles" >&2; exit 2 ;;
+  echo "usage: $0 BUILD_DIR selftest|demo|tiles|crosscheck" >&2; exit 2 ;;
 esac

@@ -22,17 +22,21 @@ namespace {
 
 const char* kValidateFooter = R"(Checks:
   every CityObject: required members, "parents"/"children" mirrored, the reader's problems
-  every morphcut BuildingPart (attribute morphcut_level), val3dity codes: 101 TOO_FEW_POINTS,
-    102 CONSECUTIVE_POINTS_SAME, 104 RING_SELF_INTERSECTION, 105 RING_COLLAPSED,
-    201 INTERSECTION_RINGS, 203 NON_PLANAR_POLYGON_DISTANCE_PLANE,
-    204 NON_PLANAR_POLYGON_NORMALS_DEVIATION, 208 ORIENTATION_RINGS_SAME,
-    301 TOO_FEW_POLYGONS, 302 SHELL_NOT_CLOSED, 303 NON_MANIFOLD_CASE, 304 POLYGON_WRONG_ORIENTATION,
-    305 MULTIPLE_CONNECTED_COMPONENTS, 306 SHELL_SELF_INTERSECTION, 307 ALL_POLYGONS_WRONG_ORIENTATION
+  every morphcut BuildingPart (attribute morphcut_level), val3dity 2.6's codes and rules at its
+    default tolerances (vertices merged as val3dity merges them, the shell built from the faces'
+    triangles as val3dity builds it): 101 TOO_FEW_POINTS, 102 CONSECUTIVE_POINTS_SAME,
+    104 RING_SELF_INTERSECTION, 105 RING_COLLAPSED, 201 INTERSECTION_RINGS,
+    203 NON_PLANAR_POLYGON_DISTANCE_PLANE, 204 NON_PLANAR_POLYGON_NORMALS_DEVIATION,
+    205 POLYGON_INTERIOR_DISCONNECTED, 206 INNER_RING_OUTSIDE, 207 INNER_RINGS_NESTED,
+    208 ORIENTATION_RINGS_SAME, 300 NOT_VALID_2_MANIFOLD, 301 TOO_FEW_POLYGONS, 302 SHELL_NOT_CLOSED,
+    303 NON_MANIFOLD_CASE, 305 MULTIPLE_CONNECTED_COMPONENTS, 306 SHELL_SELF_INTERSECTION,
+    307 POLYGON_WRONG_ORIENTATION, 405 WRONG_ORIENTATION_SHELL
   every building with parts: 601 BUILDINGPARTS_OVERLAP (an input Solid left at the parts' LoD,
-    parts of several levels at one LoD, or two parts of a level with a common volume above
-    --tolerance-overlap), 701 PARTS_VOLUME_MISMATCH (sum of part volumes vs morphcut_cell_volume,
-    relative 1e-6 plus the file's quantisation bound), 702 LEVELS_VOLUME_MISMATCH,
-    703 PART_COUNT_MISMATCH (morphcut_parts), 704 OVERLAP_NOT_COMPUTED, 705 PARTS_STATUS_MISMATCH
+    parts of several levels at one LoD, or two parts of a level whose interiors meet: exact, as
+    val3dity tests it, or a common volume above --tolerance-overlap), 701 PARTS_VOLUME_MISMATCH
+    (sum of part volumes vs morphcut_cell_volume, relative 1e-6 plus the file's quantisation
+    bound), 702 LEVELS_VOLUME_MISMATCH, 703 PART_COUNT_MISMATCH (morphcut_parts),
+    704 OVERLAP_NOT_COMPUTED, 705 PARTS_STATUS_MISMATCH
   structure: 910 READ_PROBLEM, 912 PARENTS_CHILDREN_INCONSISTENT, 913 INVALID_CITYOBJECT
 Buildings with status failed or skipped have no parts: reported as a note, not an error.
 
@@ -59,8 +63,10 @@ int validate_main(int argc, char** argv) {
                  "max angle between the normals of a face's triangles, degrees (default 20, val3dity's; 0 = "
                  "not checked)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--tolerance-overlap", opt.overlap,
-                 "common volume two parts may have and still only touch, m³ (default 0.001)")
+  app.add_option(
+         "--tolerance-overlap", opt.overlap,
+         "common volume two parts may have and still only touch, m³ (default 0: val3dity's exact test, any "
+         "common interior overlaps)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--quiet,-q", quiet, "print nothing; only the exit code (and --json) tell");
   app.footer(kValidateFooter);
