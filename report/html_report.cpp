@@ -27,7 +27,6 @@
 
 namespace mc::report {
 
-
 using namespace mc::output;
 
 namespace fs = std::filesystem;

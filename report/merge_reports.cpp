@@ -21,7 +21,6 @@ namespace mc::report {
 
 using namespace mc::massing;
 
-
 using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 

@@ -93,9 +93,9 @@ struct BuildingOutcome {
   VolumeCheckOutcome volume_check;
   std::vector<LevelOutcome> levels;  // the written levels, in level order
   Measures measures;
-  mc::massing::BuildingMassing massing;            // part roles, contacts and building features (massing/massing.hpp)
-  std::vector<std::string> problems;  // read/extraction/preprocessing problems (capped)
-  size_t sequence = 0;                // input order (set by the run)
+  mc::massing::BuildingMassing massing;  // part roles, contacts and building features (massing/massing.hpp)
+  std::vector<std::string> problems;     // read/extraction/preprocessing problems (capped)
+  size_t sequence = 0;                   // input order (set by the run)
 };
 
 }  // namespace mc::report

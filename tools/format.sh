@@ -6,9 +6,11 @@ cd "$(dirname "$0")/.."
 mode=apply
 [ "${1:-}" = "--check" ] && mode=check
 command -v clang-format >/dev/null || { echo "format.sh: clang-format is not installed (tools/setup-deps.sh)" >&2; exit 2; }
-mapfile -t files < <(git ls-files -- 'core/*.cpp' 'core/*.hpp' 'io/*.cpp' 'io/*.hpp' 'pipeline/*.cpp' \
-  'pipeline/*.hpp' 'config/*.cpp' 'config/*.hpp' 'tools/*.cpp' 'tools/*.hpp' 'tests/*.cpp' 'tests/*.hpp' \
-  2>/dev/null || find core io pipeline config tools tests \( -name '*.cpp' -o -name '*.hpp' \))
+dirs=(core io config massing output report pipeline tools tests)
+globs=()
+for d in "${dirs[@]}"; do globs+=("$d/*.cpp" "$d/*.hpp"); done
+mapfile -t files < <(git ls-files -- "${globs[@]}" 2>/dev/null ||
+  find "${dirs[@]}" \( -name '*.cpp' -o -name '*.hpp' \))
 if [ "$mode" = apply ]; then
   clang-format -i "${files[@]}"
   exit 0

@@ -28,8 +28,8 @@ int main() {
   for (uint32_t i = 0; i < n; ++i) face({i, (i + 1) % n, n + (i + 1) % n, n + i}, "WallSurface");
 
   mc::Params p;
-  mc::Preprocessed pre = mc::preprocess(m, p.pre, mc::Clock::time_point::max(),
-                                        std::numeric_limits<double>::quiet_NaN());
+  mc::Preprocessed pre =
+      mc::preprocess(m, p.pre, mc::Clock::time_point::max(), std::numeric_limits<double>::quiet_NaN());
   double volume = 0;
   for (const auto& c : pre.components) volume += c.volume;
   const mc::Decomposition d = mc::decompose(pre, p.dec, mc::Clock::time_point::max());
