@@ -111,12 +111,21 @@ struct MassingParams {
   double side_angle_deg = 10;     // a shared face within this of vertical: side contact (else inclined)
   double wing_min_share = 0.2;    // grounded part >= this x the main part's volume: wing (else annex)
   double rooftop_max_share = 0.1;  // raised part <= this x its support's volume: rooftop (else setback)
-  double roof_max_fill = 0.6;  // raised part filling <= this of its footprint x height, resting flat: roof
+  double roof_max_fill = 0.6;      // raised piece filling <= this of its footprint x height (a wedge): roof
   double podium_max_roof_share =
       0.5;  // a tower's contact covers at most this share of the podium's footprint
-  double tower_min_slenderness = 1.0;   // a tower's height >= this x its footprint's width
+  double tower_min_slenderness =
+      1.0;  // a tower's height >= this x its footprint's length (its longer plan side)
   double tower_min_height_ratio = 1.0;  // a tower's height >= this x the podium's height
   double courtyard_min_area = 10;       // footprint holes at least this large (model units^2) are courtyards
+  // Masses (docs/massing.md, "Masses").
+  double thin_width = 1.0;             // a part narrower than this in plan is a layer of its neighbour's mass
+  double mass_height_tolerance = 0.5;  // pieces of one mass have their tops and bottoms within this
+  double mass_convexity = 0.95;        // and together are about as convex as one part (V / V_hull)
+  double mass_shared_fraction = 0.5;   // and share a vertical face >= this x min height x min width
+  double roof_max_wall_share =
+      0.35;                      // a raised piece with fewer own walls than this, resting on a part, is roof
+  double roof_min_cover = 0.25;  // or covering this share of the footprint of the part it rests on
 };
 
 struct Params {

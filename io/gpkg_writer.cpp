@@ -120,6 +120,8 @@ GpkgWriter::GpkgWriter(const std::string& path, const std::string& crs, std::vec
   impl_->create(impl_->parts, "convexity", OFTReal);
   impl_->create(impl_->parts, "footprint_area", OFTReal);
   impl_->create(impl_->parts, "grounded", OFTInteger);
+  impl_->create(impl_->parts, "mass", OFTInteger);
+  impl_->create(impl_->parts, "piece", OFTString);
   if (impl_->ds->StartTransaction() != OGRERR_NONE) throw WriteError(path + ": cannot start a transaction");
 }
 
@@ -158,6 +160,8 @@ void GpkgWriter::add_part(const GpkgPart& p) {
   f->SetField(8, p.convexity);
   f->SetField(9, p.footprint_area);
   f->SetField(10, p.grounded ? 1 : 0);
+  f->SetField(11, p.mass);
+  f->SetField(12, p.piece.c_str());
   if (!p.footprint.empty()) {
     OGRMultiPolygon g = to_ogr(p.footprint);
     f->SetGeometry(&g);

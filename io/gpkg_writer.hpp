@@ -42,6 +42,8 @@ struct GpkgPart {
   std::string building, id, role;
   double level = 0;
   int index = 0;
+  int mass = -1;      // the part's mass (index within its building and level)
+  std::string piece;  // body, layer or roof (docs/massing.md, "Masses")
   double z_min = 0, z_max = 0, volume = 0, convexity = 0, footprint_area = 0;
   bool grounded = false;
   MultiPolygon2 footprint;

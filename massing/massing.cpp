@@ -12,6 +12,9 @@
 #include "core/decompose.hpp"
 #include "core/hull.hpp"
 #include "core/union_find.hpp"
+#include "massing/masses.hpp"
+#include "massing/plan_geometry.hpp"
+#include "massing/roles.hpp"
 
 namespace mc::massing {
 
@@ -19,128 +22,12 @@ using mc::io::MultiPolygon2;
 using mc::io::Polygon2;
 using mc::io::Ring2;
 using nlohmann::json;
-using Pt = std::array<double, 2>;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
 double rounded(double v, double step) { return std::isfinite(v) ? std::round(v / step) * step : v; }
-
-// Coordinates on a 1e-6 grid before any union: shared vertices of neighbouring parts are then
-// exactly equal, and the result does not depend on the last bits of a projection.
-double snap(double v) { return std::round(v * 1e6) / 1e6; }
-
-double cross2(const Pt& o, const Pt& a, const Pt& b) {
-  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
-
-double ring_signed_area(const Ring2& r) {
-  double s = 0;
-  for (size_t i = 0, n = r.size(); i < n; ++i) {
-    const Pt& a = r[i];
-    const Pt& b = r[(i + 1) % n];
-    s += a[0] * b[1] - b[0] * a[1];
-  }
-  return s / 2;
-}
-
-double polygon_area(const Polygon2& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += (i == 0 ? 1 : -1) * std::abs(ring_signed_area(p[i]));
-  return a;
-}
-
-double multipolygon_area(const MultiPolygon2& m) {
-  double a = 0;
-  for (const auto& p : m) a += polygon_area(p);
-  return a;
-}
-
-// Smallest distance between two parallel lines enclosing a convex polygon (over its edges).
-double caliper_width(const Ring2& hull) {
-  if (hull.size() < 3) return 0;
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < hull.size(); ++i) {
-    const Pt& a = hull[i];
-    const Pt& b = hull[(i + 1) % hull.size()];
-    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-    if (len <= 0) continue;
-    double far = 0;
-    for (const Pt& q : hull) far = std::max(far, std::abs(cross2(a, b, q)) / len);
-    best = std::min(best, far);
-  }
-  return std::isfinite(best) ? best : 0;
-}
-
-using mc::io::to_ogr;
-
-Polygon2 from_ogr(const OGRPolygon& p) {
-  Polygon2 out;
-  auto ring = [](const OGRLinearRing* r) {
-    Ring2 x;
-    const int n = r->getNumPoints();
-    for (int i = 0; i + 1 < n; ++i) x.push_back({r->getX(i), r->getY(i)});
-    return x;
-  };
-  if (const OGRLinearRing* ext = p.getExteriorRing()) out.push_back(ring(ext));
-  for (int i = 0; i < p.getNumInteriorRings(); ++i) out.push_back(ring(p.getInteriorRing(i)));
-  return out;
-}
-
-void collect(const OGRGeometry* g, MultiPolygon2& out) {
-  if (!g) return;
-  const OGRwkbGeometryType t = wkbFlatten(g->getGeometryType());
-  if (t == wkbPolygon) {
-    out.push_back(from_ogr(*g->toPolygon()));
-  } else if (t == wkbMultiPolygon || t == wkbGeometryCollection) {
-    const auto* c = g->toGeometryCollection();
-    for (int i = 0; i < c->getNumGeometries(); ++i) collect(c->getGeometryRef(i), out);
-  }
-}
-
-// Exact union of polygons (GEOS through OGR); empty on failure.
-MultiPolygon2 union_of(const std::vector<Polygon2>& polys, bool& ok) {
-  // Invalid footprints are expected (faces projected edge-on) and repaired below: GEOS's notices
-  // about them would only be noise on the user's stderr. The handler stack is per thread.
-  struct QuietGdal {
-    QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
-    ~QuietGdal() { CPLPopErrorHandler(); }
-  } quiet;
-  OGRMultiPolygon mp;
-  for (const auto& p : polys) {
-    OGRPolygon g = to_ogr(p);
-    if (g.IsEmpty()) continue;
-    if (!g.IsValid()) {
-      std::unique_ptr<OGRGeometry> fixed(g.Buffer(0));
-      MultiPolygon2 parts;
-      collect(fixed.get(), parts);
-      for (const auto& q : parts) {
-        OGRPolygon h = to_ogr(q);
-        if (!h.IsEmpty()) mp.addGeometry(&h);
-      }
-      continue;
-    }
-    mp.addGeometry(&g);
-  }
-  MultiPolygon2 out;
-  ok = true;
-  if (mp.IsEmpty()) return out;
-  std::unique_ptr<OGRGeometry> u(mp.UnionCascaded());
-  if (!u) {
-    ok = false;
-    return out;
-  }
-  collect(u.get(), out);
-  // Canonical order (GEOS's output order is deterministic, but make it independent of it).
-  for (auto& poly : out)
-    for (auto& r : poly) {
-      if (r.empty()) continue;
-      std::rotate(r.begin(), std::min_element(r.begin(), r.end()), r.end());
-    }
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 // Vector area (half the sum of cross products) of a 3D ring.
 Vec3 vector_area(const PolygonMesh& m, const std::vector<uint32_t>& ring) {
@@ -191,87 +78,6 @@ const char* kind_name(double nz, double stacked_cos, double side_sin) {
   if (std::abs(nz) >= stacked_cos) return "stacked";
   if (std::abs(nz) <= side_sin) return "side";
   return "inclined";
-}
-
-// Roles (docs/massing.md §Roles): ordered rules, the first that applies gives a part its role.
-void assign_roles(LevelMassing& L, const MassingParams& p) {
-  auto& P = L.parts;
-  const size_t n = P.size();
-  std::vector<size_t> by_volume(n);
-  std::iota(by_volume.begin(), by_volume.end(), size_t{0});
-  std::stable_sort(by_volume.begin(), by_volume.end(),
-                   [&](size_t a, size_t b) { return P[a].volume > P[b].volume; });
-  auto height = [&](size_t i) { return P[i].z_max - P[i].z_min; };
-
-  // 1. podium and tower: a raised part t stacked on the largest grounded part q, covering a small
-  //    share of q's footprint, slender, at least as tall as q and not a rooftop unit by volume.
-  size_t largest_grounded = n;
-  for (size_t i : by_volume)
-    if (P[i].grounded) {
-      largest_grounded = i;
-      break;
-    }
-  for (size_t t : by_volume) {
-    if (P[t].grounded || !P[t].role.empty()) continue;
-    for (const Contact& c : P[t].contacts) {
-      if (c.kind != "stacked" || c.above != 1) continue;
-      const size_t q = c.other;
-      if (q != largest_grounded) continue;
-      if (P[t].volume <= p.rooftop_max_share * P[q].volume) continue;
-      if (c.area > p.podium_max_roof_share * P[q].footprint_area) continue;
-      if (height(t) < p.tower_min_slenderness * P[t].width) continue;
-      if (height(t) < p.tower_min_height_ratio * height(q)) continue;
-      P[q].role = "podium";
-      P[t].role = "tower";
-      break;
-    }
-  }
-  // 2. main: the largest grounded part left.
-  size_t main = n;
-  for (size_t i : by_volume)
-    if (P[i].grounded && P[i].role.empty()) {
-      main = i;
-      P[i].role = "main";
-      break;
-    }
-  double reference = main < n ? P[main].volume : 0;
-  if (main == n)
-    for (size_t i : by_volume)
-      if (P[i].role == "podium") {
-        reference = P[i].volume;
-        break;
-      }
-  // 3./4. the other grounded parts: wing when substantial, else annex.
-  for (size_t i = 0; i < n; ++i)
-    if (P[i].grounded && P[i].role.empty())
-      P[i].role = P[i].volume >= p.wing_min_share * reference ? "wing" : "annex";
-  // 5. roof: a raised part that is a pitched-roof wedge, sawtooth or slab cut off the storeys it
-  //    rests on: it fills at most roof_max_fill of its footprint x height and its largest contact
-  //    below is stacked and covers at least 0.8 of its footprint. Not a stepped-back storey (a
-  //    setback) nor a unit on the roof (docs/massing.md: judged on rendered 3D BAG buildings).
-  for (size_t i = 0; i < n; ++i) {
-    if (!P[i].role.empty() || !(P[i].footprint_area > 0) || !(height(i) > 0)) continue;
-    const Contact* below = nullptr;
-    for (const Contact& c : P[i].contacts)
-      if (c.above == 1 && (!below || c.area > below->area)) below = &c;
-    if (!below || below->kind != "stacked" || below->area < 0.8 * P[i].footprint_area) continue;
-    if (P[i].volume <= p.roof_max_fill * P[i].footprint_area * height(i)) P[i].role = "roof";
-  }
-  // 6./7. other raised parts: rooftop when small beside what carries them, else setback.
-  for (size_t i = 0; i < n; ++i) {
-    if (!P[i].role.empty()) continue;
-    // Support: the neighbour it rests on with the largest shared area (stacked or inclined
-    // contact, this part above); else the neighbour it shares most with; else the largest part.
-    long s = -1;
-    double best = -1;
-    for (const Contact& c : P[i].contacts)
-      if (c.above == 1 && c.area > best) best = c.area, s = static_cast<long>(c.other);
-    if (s < 0)
-      for (const Contact& c : P[i].contacts)
-        if (c.area > best) best = c.area, s = static_cast<long>(c.other);
-    const double support = s >= 0 ? P[static_cast<size_t>(s)].volume : (n ? P[by_volume[0]].volume : 0);
-    P[i].role = P[i].volume <= p.rooftop_max_share * support ? "rooftop" : "setback";
-  }
 }
 
 size_t analysis_index(const BuildingMassing& m, double level) {
@@ -347,13 +153,25 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
     std::vector<Pt> outer;
     for (const auto& poly : pm.footprint)
       if (!poly.empty()) outer.insert(outer.end(), poly[0].begin(), poly[0].end());
-    pm.width = caliper_width(mc::convex_hull_2d(outer));
+    const PlanExtent extent = plan_extent(mc::convex_hull_2d(outer));
+    pm.width = extent.width;
+    pm.length = extent.length;
     // Contacts: shared faces by neighbour and kind.
     std::map<uint32_t, std::map<std::string, std::pair<double, double>>>
-        acc;  // other -> kind -> (area, signed up-area)
+        acc;                    // other -> kind -> (area, signed up-area)
+    double own = 0, walls = 0;  // the part's own faces' area, and its walls'
+    double flat_up = 0;         // horizontal upward faces' area
     for (const Polygon& f : m.faces) {
-      if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j)
+      {
+        const auto [a, nrm] = face_area(m, f);
+        if (nrm.z >= stacked_cos) flat_up += a;
+      }
+      if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j) {
+        const auto [a, nrm] = face_area(m, f);
+        own += a;
+        if (std::abs(nrm.z) <= side_sin) walls += a;
         continue;
+      }
       const auto [area, nrm] = face_area(m, f);
       if (!(area > 0)) continue;
       auto& slot = acc[static_cast<uint32_t>(f.neighbour)][kind_name(nrm.z, stacked_cos, side_sin)];
@@ -374,11 +192,41 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
       }
       pm.contacts.push_back(std::move(c));
     }
+    pm.wall_share = own > 0 ? walls / own : 0.0;
+    pm.flat_top = pm.footprint_area > 0 ? std::min(1.0, flat_up / pm.footprint_area) : 0.0;
   }
   for (auto& pm : L.parts) pm.grounded = pm.z_min <= ground + p.ground_tolerance;
+  group_masses(L, meshes, ground, p);
   assign_roles(L, p);
   return L;
 }
+
+namespace {
+
+// Tiers: the longest chain of stacked contacts between masses, + 1 (masses in order of z_min: an
+// edge goes up); a roof or a rooftop unit is no tier.
+int tiers_of(const LevelMassing& L) {
+  const size_t nm = L.masses.size();
+  if (nm == 0) return 0;
+  std::vector<size_t> order(nm);
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return L.masses[a].z_min < L.masses[b].z_min; });
+  std::vector<int> chain;
+  chain.resize(nm, 1);
+  int tiers = 1;
+  for (size_t i : order) {
+    for (const Contact& c : L.masses[i].contacts)
+      if (c.kind == "stacked" && c.above == 1 && L.masses[c.other].z_min < L.masses[i].z_min) {
+        const bool tier = L.masses[i].role != "roof" && L.masses[i].role != "rooftop";
+        chain[i] = std::max(chain[i], chain[c.other] + (tier ? 1 : 0));
+      }
+    tiers = std::max(tiers, chain[i]);
+  }
+  return tiers;
+}
+
+}  // namespace
 
 void finish_massing(BuildingMassing& m, const MassingParams& p) {
   m.features = {};
@@ -389,25 +237,15 @@ void finish_massing(BuildingMassing& m, const MassingParams& p) {
   f.valid = true;
   f.level = L.threshold;
   const size_t n = L.parts.size();
-  for (const auto& pm : L.parts) {
-    f.setbacks += pm.role == "setback";
-    f.wings += pm.role == "wing";
-    f.annexes += pm.role == "annex";
-    f.rooftop_units += pm.role == "rooftop";
-    f.tower_on_podium = f.tower_on_podium || pm.role == "podium";
+  // Counts of masses (docs/massing.md, "Building features").
+  for (const auto& mm : L.masses) {
+    f.setbacks += mm.role == "setback";
+    f.wings += mm.role == "wing";
+    f.annexes += mm.role == "annex";
+    f.rooftop_units += mm.role == "rooftop";
+    f.tower_on_podium = f.tower_on_podium || mm.role == "podium";
   }
-  // Tiers: the longest chain of stacked contacts, + 1 (parts in order of z_min: an edge goes up).
-  std::vector<size_t> order(n);
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return L.parts[a].z_min < L.parts[b].z_min; });
-  std::vector<int> chain(n, 1);
-  for (size_t i : order)
-    for (const Contact& c : L.parts[i].contacts)
-      if (c.kind == "stacked" && c.above == 1 && L.parts[c.other].z_min < L.parts[i].z_min)
-        chain[i] =
-            std::max(chain[i], chain[c.other] + (L.parts[i].role == "roof" ? 0 : 1));  // a roof is no tier
-  for (int c : chain) f.tiers = std::max(f.tiers, c);
+  f.tiers = tiers_of(L);
   // Graph: undirected edges, components, independent cycles.
   mc::UnionFind graph(n);
   for (size_t i = 0; i < n; ++i)
@@ -447,7 +285,9 @@ void to_file(BuildingMassing& m, const WorkingFrame& frame) {
 
 void add_part_attributes(json& a, const LevelMassing& L, size_t j, const std::string& building) {
   const PartMassing& pm = L.parts[j];
-  a["morphcut_role"] = pm.role;
+  a["morphcut_role"] = pm.role;  // its mass's
+  a["morphcut_mass"] = pm.mass;
+  a["morphcut_piece"] = pm.piece;
   a["morphcut_z_min"] = rounded(pm.z_min, 1e-6);
   a["morphcut_z_max"] = rounded(pm.z_max, 1e-6);
   a["morphcut_footprint_area"] = rounded(pm.footprint_area, 1e-6);
@@ -497,13 +337,30 @@ json massing_to_json(const BuildingMassing& m) {
       parts.push_back({{"z", {pm.z_min, pm.z_max}},
                        {"fa", pm.footprint_area},
                        {"w", pm.width},
+                       {"l", pm.length},
+                       {"ws", pm.wall_share},
+                       {"m", pm.mass},
+                       {"pc", pm.piece},
                        {"v", {pm.volume, pm.hull_volume, pm.convexity}},
                        {"g", pm.grounded},
                        {"r", pm.role},
                        {"c", contacts},
                        {"f", rings_json(pm.footprint)}});
     }
-    levels.push_back({{"i", L.index}, {"t", L.threshold}, {"p", parts}});
+    json masses = json::array();
+    for (const auto& mm : L.masses) {
+      json contacts = json::array();
+      for (const auto& c : mm.contacts) contacts.push_back({c.other, c.area, c.kind, c.above});
+      masses.push_back({{"p", mm.parts},
+                        {"z", {mm.z_min, mm.z_max}},
+                        {"v", {mm.volume, mm.hull_volume}},
+                        {"fa", mm.footprint_area},
+                        {"wl", {mm.width, mm.length}},
+                        {"g", mm.grounded},
+                        {"r", mm.role},
+                        {"c", contacts}});
+    }
+    levels.push_back({{"i", L.index}, {"t", L.threshold}, {"p", parts}, {"m", masses}});
   }
   const MassingFeatures& f = m.features;
   return {{"levels", levels},
@@ -525,6 +382,10 @@ void massing_from_json(const json& j, BuildingMassing& m) {
       pm.z_max = pj.at("z")[1].get<double>();
       pm.footprint_area = pj.at("fa").get<double>();
       pm.width = pj.at("w").get<double>();
+      pm.length = pj.at("l").get<double>();
+      pm.wall_share = pj.at("ws").get<double>();
+      pm.mass = pj.at("m").get<int>();
+      pm.piece = pj.at("pc").get<std::string>();
       pm.volume = pj.at("v")[0].get<double>();
       pm.hull_volume = pj.at("v")[1].get<double>();
       pm.convexity = pj.at("v")[2].get<double>();
@@ -535,6 +396,23 @@ void massing_from_json(const json& j, BuildingMassing& m) {
             {cj[0].get<uint32_t>(), cj[1].get<double>(), cj[2].get<std::string>(), cj[3].get<int>()});
       pm.footprint = rings_from_json(pj.at("f"));
       L.parts.push_back(std::move(pm));
+    }
+    for (const auto& mj : lj.at("m")) {
+      MassMassing mm;
+      mm.parts = mj.at("p").get<std::vector<uint32_t>>();
+      mm.z_min = mj.at("z")[0].get<double>();
+      mm.z_max = mj.at("z")[1].get<double>();
+      mm.volume = mj.at("v")[0].get<double>();
+      mm.hull_volume = mj.at("v")[1].get<double>();
+      mm.footprint_area = mj.at("fa").get<double>();
+      mm.width = mj.at("wl")[0].get<double>();
+      mm.length = mj.at("wl")[1].get<double>();
+      mm.grounded = mj.at("g").get<bool>();
+      mm.role = mj.at("r").get<std::string>();
+      for (const auto& cj : mj.at("c"))
+        mm.contacts.push_back(
+            {cj[0].get<uint32_t>(), cj[1].get<double>(), cj[2].get<std::string>(), cj[3].get<int>()});
+      L.masses.push_back(std::move(mm));
     }
     m.levels.push_back(std::move(L));
   }
@@ -563,6 +441,8 @@ json graph_json(const std::string& building, const std::string& status, const Bu
       nodes.push_back({{"id", part_name(building, L.index, j)},
                        {"index", j},
                        {"role", pm.role},
+                       {"mass", pm.mass},
+                       {"piece", pm.piece},
                        {"z_min", rounded(pm.z_min, 1e-6)},
                        {"z_max", rounded(pm.z_max, 1e-6)},
                        {"footprint_area", rounded(pm.footprint_area, 1e-6)},
@@ -580,7 +460,23 @@ json graph_json(const std::string& building, const std::string& status, const Bu
         edges.push_back(std::move(e));
       }
     }
-    levels.push_back({{"threshold", L.threshold}, {"index", L.index}, {"nodes", nodes}, {"edges", edges}});
+    json masses = json::array();
+    for (size_t k = 0; k < L.masses.size(); ++k) {
+      const MassMassing& mm = L.masses[k];
+      masses.push_back({{"mass", k},
+                        {"role", mm.role},
+                        {"parts", mm.parts},
+                        {"z_min", rounded(mm.z_min, 1e-6)},
+                        {"z_max", rounded(mm.z_max, 1e-6)},
+                        {"footprint_area", rounded(mm.footprint_area, 1e-6)},
+                        {"volume", rounded(mm.volume, 1e-6)},
+                        {"grounded", mm.grounded}});
+    }
+    levels.push_back({{"threshold", L.threshold},
+                      {"index", L.index},
+                      {"nodes", nodes},
+                      {"edges", edges},
+                      {"masses", masses}});
   }
   json features = nullptr;
   if (m.features.valid) {

@@ -32,17 +32,35 @@ struct PartMassing {
   double z_min = 0, z_max = 0;
   double footprint_area = 0;  // vertical projection
   double width = 0;           // smallest caliper width of the footprint's convex hull
+  double length = 0;          // its extent across that width (massing/plan_geometry.hpp)
   double volume = 0, hull_volume = 0, convexity = 0;
+  // Share of the part's own faces (not shared with a neighbour) that are walls (within
+  // side_angle_deg of vertical), by area: a roof piece has few, a dormer or a storey many.
+  double wall_share = 0;
+  // Share of the footprint covered by horizontal upward faces (own or shared): 1 for a flat top.
+  double flat_top = 0;
   bool grounded = false;
-  std::string role;               // main, wing, annex, podium, tower, roof, setback, rooftop
+  std::string role;               // its mass's: main, wing, annex, podium, tower, roof, setback, rooftop
+  int mass = -1;                  // index into LevelMassing::masses
+  std::string piece = "body";     // body, roof (a roof piece of its mass) or layer (a thin skin)
   std::vector<Contact> contacts;  // by neighbour index
   mc::io::MultiPolygon2 footprint;
+};
+
+// Parts a person sees as one volume (docs/massing.md, "Masses").
+struct MassMassing {
+  std::vector<uint32_t> parts;  // ascending
+  double z_min = 0, z_max = 0, volume = 0, hull_volume = 0, footprint_area = 0, width = 0, length = 0;
+  bool grounded = false;
+  std::string role;
+  std::vector<Contact> contacts;  // by mass index, from the parts' contacts across masses
 };
 
 struct LevelMassing {
   size_t index = 0;  // into Params::dec.levels
   double threshold = 0;
   std::vector<PartMassing> parts;
+  std::vector<MassMassing> masses;
 };
 
 struct MassingFeatures {

@@ -29,8 +29,8 @@ using SteadyClock = std::chrono::steady_clock;
 namespace {
 
 // 2: parts checked and repaired on the output grid (docs/output-format.md); 3: massing analytics;
-// 4: a level's result in the report's schema (report/level_json.hpp)
-constexpr int kFormat = 4;
+// 4: a level's result in the report's schema (report/level_json.hpp); 5: masses (docs/massing.md)
+constexpr int kFormat = 5;
 
 // Settings that do not change a complete result: worker threads, buildings in flight, logging
 // (outputs are byte-identical for any thread count). Everything else in the effective config is

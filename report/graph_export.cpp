@@ -99,6 +99,8 @@ void MassingGpkgWriter::add(const BuildingOutcome& b) {
       p.building = b.id;
       p.id = b.id + "-mc" + std::to_string(L.index) + "-" + std::to_string(j);
       p.role = pm.role;
+      p.mass = pm.mass;
+      p.piece = pm.piece;
       p.level = L.threshold;
       p.index = static_cast<int>(j);
       p.z_min = rounded(pm.z_min, 1e-6);

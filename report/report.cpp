@@ -14,7 +14,6 @@ namespace mc::report {
 
 using namespace mc::massing;
 
-
 using json = nlohmann::ordered_json;
 
 namespace {
@@ -35,13 +34,13 @@ json building_report(const BuildingOutcome& b) {
   j["lod"] = b.lod;
   json levels = json::array();
   for (const auto& l : b.levels) {
-    json lj = level_json(l);  // report/level_json.hpp
+    json lj = level_json(l);                 // report/level_json.hpp
     for (const auto& lm : b.massing.levels)  // part roles (massing/massing.hpp)
       if (lm.index == l.index) {
         json roles = json::object();
-        for (const char* r : {"main", "wing", "annex", "podium", "tower", "setback", "rooftop"}) {
+        for (const char* r : {"main", "wing", "annex", "podium", "tower", "setback", "roof", "rooftop"}) {
           int k = 0;
-          for (const auto& pm : lm.parts) k += pm.role == r;
+          for (const auto& mm : lm.masses) k += mm.role == r;
           if (k) roles[r] = k;
         }
         lj["roles"] = std::move(roles);

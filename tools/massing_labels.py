@@ -4,6 +4,8 @@ labelled set"; tests/data/massing_labels.json).
 
 usage: tools/massing_labels.py sample   --out DIR [--bin B] [--seed S]     draw the buildings, render them
        tools/massing_labels.py evaluate LABELS [--bin B] [--work DIR] [--min-roles R] [--min-buildings F]
+       tools/massing_labels.py collect  --manifest M --out LABELS FILE... [--review FILE]
+       tools/massing_labels.py agree    LABELS                              two people's labels compared
 
 sample    runs morphcut-city on the public sources (the 3D BAG tile, cjio's Rotterdam subset, the Den
           Haag files, the Berlin CityGML sample), draws the buildings with 2-40 parts at level 0.01
@@ -20,6 +22,12 @@ evaluate  runs morphcut-city on the sources again, maps each labelled part to th
           the current parts' mass roles) is the label's; a building is right when every feature count
           equals the label's. Prints the confusion table per role and per source; exit 1 below
           --min-roles (0.97) or --min-buildings (0.90).
+collect   joins the people's label files (each {"buildings": [label...]}) with the manifest's part
+          geometry into one LABELS file (tests/data/massing_labels.json): seed, level, how the
+          buildings were drawn and rendered, the guide, and the second labeller's labels as "review".
+agree     compares the primary labels with the second labeller's (LABELS["review"], made blind on a
+          third of the buildings): masses with the same parts and role, parts with the same role,
+          buildings with every feature equal, and Cohen's kappa over the parts' roles.
 """
 import argparse, collections, json, os, random, subprocess, sys
 
@@ -84,7 +92,7 @@ def parts_of(objects, verts):
         lo = [min(p[j] for p in pts) for j in range(3)]
         hi = [max(p[j] for p in pts) for j in range(3)]
         out[o["parents"][0]].append({
-            "index": a["morphcut_index"], "id": k,
+            "index": a["morphcut_index"], "id": k, "width": plan_width(pts),
             "centroid": [round(sum(p[j] for p in pts) / len(pts), 4) for j in range(3)],
             "box": [[round(x, 4) for x in lo], [round(x, 4) for x in hi]],
             "volume": a.get("volume"), "role": a.get("morphcut_role"),
@@ -93,6 +101,32 @@ def parts_of(objects, verts):
     for v in out.values():
         v.sort(key=lambda p: p["index"])
     return out
+
+
+def plan_width(pts):
+    """The smallest caliper width of the points' plan (2D convex hull), metres."""
+    q = sorted({(round(p[0], 6), round(p[1], 6)) for p in pts})
+    if len(q) < 3:
+        return 0.0
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    lower, upper = [], []
+    for p in q:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(q):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    hull = lower[:-1] + upper[:-1]
+    best = float("inf")
+    for i in range(len(hull)):
+        a, b = hull[i], hull[(i + 1) % len(hull)]
+        L = ((b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2) ** 0.5
+        if L > 0:
+            best = min(best, max(abs(cross(a, b, c)) / L for c in hull))
+    return 0.0 if best == float("inf") else best
 
 
 def sample(args):
@@ -145,6 +179,8 @@ def evaluate(args):
     work = args.work
     cache = {}
     confusion = collections.defaultdict(collections.Counter)  # label role -> predicted role
+    by_source = collections.defaultdict(lambda: collections.defaultdict(collections.Counter))
+    slivers = 0  # tool masses of role annex or wing made only of parts thinner than 1 m
     per_source = collections.defaultdict(lambda: [0, 0, 0, 0])  # masses right, masses, buildings right, buildings
     feature_misses = collections.Counter()
     thin_counted = 0
@@ -167,9 +203,16 @@ def evaluate(args):
                     weight[cp["mass_role"] or cp["role"]] += cp["volume"] or 0
             predicted = weight.most_common(1)[0][0] if weight else "?"
             confusion[m["role"]][predicted] += 1
+            by_source[key][m["role"]][predicted] += 1
             s = per_source[key]
             s[0] += predicted == m["role"]
             s[1] += 1
+        tool_masses = collections.defaultdict(list)
+        for cp in current:
+            tool_masses[cp["mass"] if cp["mass"] is not None else ("part", cp["index"])].append(cp)
+        for ps in tool_masses.values():
+            if (ps[0]["mass_role"] or ps[0]["role"]) in ("annex", "wing") and all(cp["width"] < 1.0 for cp in ps):
+                slivers += 1
         attrs = objects.get(b["id"], {}).get("attributes", {})
         right = True
         for f in FEATURES:
@@ -180,6 +223,15 @@ def evaluate(args):
             if got != want:
                 right = False
                 feature_misses[f] += 1
+        if args.verbose and not right:
+            tool = collections.defaultdict(list)
+            for cp in current:
+                tool[(cp["mass"], cp["mass_role"] or cp["role"])].append(cp["index"])
+            print(f"- {key} {b['id']}: person " + "; ".join(f"{m['role']} {m['parts']}" for m in b["masses"])
+                  + " | tool " + "; ".join(f"{r} {ps}" for (_, r), ps in sorted(tool.items(), key=lambda t: t[1]))
+                  + " | " + ", ".join(f"{f} {b['features'][f]}/{attrs.get('morphcut_' + f)}" for f in FEATURES
+                                       if (bool(b['features'][f]) != bool(attrs.get('morphcut_' + f)) if f == 'tower_on_podium'
+                                           else b['features'][f] != attrs.get('morphcut_' + f))))
         s = per_source[key]
         s[2] += right
         s[3] += 1
@@ -192,14 +244,101 @@ def evaluate(args):
           f"({100 * buildings_right / max(buildings, 1):.1f} %)")
     print("per source: " + ", ".join(f"{k} roles {s[0]}/{s[1]} buildings {s[2]}/{s[3]}" for k, s in sorted(per_source.items())))
     print("feature mismatches: " + ", ".join(f"{f} {n}" for f, n in feature_misses.most_common()))
+    print(f"annex or wing masses made only of parts under 1 m wide: {slivers}")
     roles = ROLES + sorted({r for c in confusion.values() for r in c} - set(ROLES))
-    print("confusion (rows: person, columns: tool)")
-    print(f"{'':9}" + "".join(f"{r[:7]:>8}" for r in roles))
-    for r in ROLES:
-        if confusion[r]:
-            print(f"{r:9}" + "".join(f"{confusion[r][c] or '.':>8}" for c in roles))
+    def table(title, conf):
+        print(f"{title} (rows: person, columns: tool)")
+        print(f"{'':9}" + "".join(f"{r[:7]:>8}" for r in roles))
+        for r in ROLES:
+            if conf[r]:
+                print(f"{r:9}" + "".join(f"{conf[r][c] or '.':>8}" for c in roles))
+    table("confusion, all sources", confusion)
+    if args.per_source:
+        for k in sorted(by_source):
+            table(f"confusion, {k}", by_source[k])
     ok = masses_right >= args.min_roles * masses and buildings_right >= args.min_buildings * buildings
     return 0 if ok else 1
+
+
+def collect(args):
+    manifest = json.load(open(args.manifest))
+    by_key = {(b["source"], b["id"]): b for b in manifest["buildings"]}
+    labels = {}
+    for f in args.files:
+        for lab in json.load(open(f))["buildings"]:
+            labels[(lab["source"], lab["id"])] = lab
+    out = {
+        "about": "Massing labels of real buildings judged by a person (docs/massing.md, 'The labelled set'; "
+                 "guide: docs/massing-labelling-guide.md)",
+        "drawn": f"tools/massing_labels.py sample --seed {manifest['seed']}: random.Random(seed).sample of 100 "
+                 "among the 3D BAG tile's buildings with 2-40 parts at level 0.01, every such building of the "
+                 "other sources",
+        "rendered": "tools/render-parts OUT.level-0.01.city.json --neutral --input OUT.city.json --id ID",
+        "seed": manifest["seed"], "level": manifest["level"], "buildings": [], "review": []}
+    for key, b in by_key.items():
+        if key not in labels:
+            continue
+        lab = labels[key]
+        out["buildings"].append({"source": b["source"], "file": b["file"], "id": b["id"], "parts": b["parts"],
+                                 "masses": lab["masses"], "features": lab["features"],
+                                 "confidence": lab.get("confidence"), "notes": lab.get("notes", "")})
+    if args.review:
+        for lab in json.load(open(args.review))["buildings"]:
+            out["review"].append({k: lab.get(k) for k in ("source", "id", "masses", "features", "confidence", "notes")})
+    json.dump(out, open(args.out, "w"), indent=1)
+    print(f"{len(out['buildings'])} buildings labelled of {len(by_key)}; {len(out['review'])} reviewed")
+    return 0
+
+
+def agree(args):
+    data = json.load(open(args.labels))
+    primary = {(b["source"], b["id"]): b for b in data["buildings"]}
+    review = data.get("review", [])
+    same_mass = masses = same_part = parts = same_feat = 0
+    mass_major = [0, 0]
+    feat_eq = collections.Counter()
+    pairs = []
+    for r in review:
+        b = primary.get((r["source"], r["id"]))
+        if not b:
+            continue
+        def part_role(lab):
+            return {i: (m["role"], tuple(sorted(m["parts"]))) for m in lab["masses"] for i in m["parts"]}
+        pa, pb = part_role(b), part_role(r)
+        vol = {pp["index"]: pp.get("volume") or 0 for pp in b.get("parts", [])}
+        for m in b["masses"]:  # as `evaluate` scores the tool: the volume-weighted majority role
+            w = collections.Counter()
+            for i in m["parts"]:
+                w[pb.get(i, ("?",))[0]] += vol.get(i, 0)
+            mass_major[0] += (w.most_common(1)[0][0] if w else "?") == m["role"]
+            mass_major[1] += 1
+        sa = {(t, role) for role, t in pa.values()}
+        sb = {(t, role) for role, t in pb.values()}
+        masses += len(sa)
+        same_mass += len(sa & sb)
+        for i in pa:
+            parts += 1
+            same_part += pb.get(i, ("?",))[0] == pa[i][0]
+            pairs.append((pa[i][0], pb.get(i, ("?",))[0]))
+        eq = True
+        for f in FEATURES:
+            e = bool(b["features"][f]) == bool(r["features"][f]) if f == "tower_on_podium" else b["features"][f] == r["features"][f]
+            feat_eq[f] += e
+            eq = eq and e
+        same_feat += eq
+    n = len(review)
+    po = same_part / max(parts, 1)
+    ca, cb = collections.Counter(a for a, _ in pairs), collections.Counter(b for _, b in pairs)
+    pe = sum(ca[k] * cb[k] for k in ca) / max(len(pairs), 1) ** 2
+    kappa = (po - pe) / (1 - pe) if pe < 1 else 1.0
+    print(f"buildings reviewed: {n}")
+    print(f"masses with the same parts and role: {same_mass}/{masses} ({100 * same_mass / max(masses, 1):.1f} %)")
+    print(f"masses with the second person's role (volume-weighted majority of their parts, as evaluate scores the "
+          f"tool): {mass_major[0]}/{mass_major[1]} ({100 * mass_major[0] / max(mass_major[1], 1):.1f} %)")
+    print(f"parts with the same role: {same_part}/{parts} ({100 * po:.1f} %), Cohen's kappa {kappa:.2f}")
+    print(f"buildings with every feature equal: {same_feat}/{n} ({100 * same_feat / max(n, 1):.1f} %)")
+    print("per feature equal: " + ", ".join(f"{f} {feat_eq[f]}/{n}" for f in FEATURES))
+    return 0
 
 
 def main():
@@ -213,10 +352,19 @@ def main():
     e.add_argument("--work", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "morphcut-massing-labels"))
     e.add_argument("--min-roles", type=float, default=0.97)
     e.add_argument("--min-buildings", type=float, default=0.90)
+    e.add_argument("--per-source", action="store_true", help="a confusion table per source too")
+    e.add_argument("--verbose", action="store_true", help="each building whose features differ: masses and counts")
+    c = sub.add_parser("collect")
+    c.add_argument("--manifest", required=True)
+    c.add_argument("--out", required=True)
+    c.add_argument("--review")
+    c.add_argument("files", nargs="+")
+    a = sub.add_parser("agree")
+    a.add_argument("labels")
     for p in (s, e):
         p.add_argument("--bin", default=os.path.join(ROOT, "build", "tools", "morphcut-city"))
     args = ap.parse_args()
-    return sample(args) if args.cmd == "sample" else evaluate(args)
+    return {"sample": sample, "evaluate": evaluate, "collect": collect, "agree": agree}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -134,11 +134,14 @@ TEST(Massing, BoxIsOneMainPart) {
   EXPECT_NEAR(pa.at("morphcut_footprint_area").get<double>(), 120, 1e-6);
 }
 
-TEST(Massing, LShapeIsMainAndWing) {
+// An L of one height under one flat roof is one mass, as the people who labelled real buildings
+// see it (docs/massing.md, "The labelled set"): two parts, one main mass, no wing.
+TEST(Massing, LShapeOfOneHeightIsOneMainMass) {
   const Result r = run(prism({{0, 0, 0}, {20, 0, 0}, {20, 10, 0}, {10, 10, 0}, {10, 20, 0}, {0, 20, 0}}, 8));
   ASSERT_EQ(r.b.status, "ok") << r.b.reason;
-  EXPECT_EQ(r.roles, (Roles{{"main", 1}, {"wing", 1}})) << describe(r);
-  EXPECT_EQ(r.b.massing.features.wings, 1);
+  EXPECT_EQ(r.roles, (Roles{{"main", 2}})) << describe(r);
+  EXPECT_EQ(r.level->masses.size(), 1u);
+  EXPECT_EQ(r.b.massing.features.wings, 0);
   ASSERT_EQ(r.level->parts.size(), 2u);
   // One side contact, 10 m x 8 m.
   ASSERT_EQ(r.level->parts[0].contacts.size(), 1u);
@@ -146,6 +149,15 @@ TEST(Massing, LShapeIsMainAndWing) {
   EXPECT_NEAR(r.level->parts[0].contacts[0].area, 80, 1e-3);
   EXPECT_EQ(r.b.massing.features.edges, 1);
   EXPECT_EQ(r.b.massing.features.cycles, 0);
+}
+
+// An L whose arm is lower (5 m against 8 m) is a main mass and a wing.
+TEST(Massing, LShapeWithALowerArmIsMainAndWing) {
+  const Result r = run(join({box({0, 0, 0}, {20, 10, 8}), box({0, 10, 0}, {10, 20, 5})}));
+  ASSERT_EQ(r.b.status, "ok") << r.b.reason;
+  EXPECT_EQ(r.roles, (Roles{{"main", 1}, {"wing", 1}})) << describe(r);
+  EXPECT_EQ(r.level->masses.size(), 2u);
+  EXPECT_EQ(r.b.massing.features.wings, 1);
 }
 
 TEST(Massing, HouseWithPorchIsMainAndAnnex) {
@@ -201,6 +213,34 @@ TEST(Massing, GableHouseWithTwoDormers) {
   EXPECT_EQ(r.b.massing.features.rooftop_units, 2) << describe(r);
   EXPECT_EQ(r.roles["rooftop"], 2) << describe(r);
   EXPECT_EQ(r.roles["main"], 1) << describe(r);
+}
+
+// A 0.6 m skin on the lower half of one wall: a layer of the block's mass, never an annex.
+TEST(Massing, WallSkinIsALayerOfTheMainMass) {
+  const Result r = run(join({box({0, 0, 0}, {12, 10, 8}), box({0, -0.6, 0}, {12, 0, 4})}));
+  ASSERT_EQ(r.b.status, "ok") << r.b.reason;
+  ASSERT_TRUE(r.level);
+  ASSERT_EQ(r.level->parts.size(), 2u) << describe(r);
+  EXPECT_EQ(r.level->masses.size(), 1u) << describe(r);
+  EXPECT_EQ(r.roles, (Roles{{"main", 2}})) << describe(r);
+  EXPECT_EQ(r.b.massing.features.annexes, 0);
+  EXPECT_EQ(r.b.massing.features.wings, 0);
+  int layers = 0;
+  for (const auto& p : r.level->parts) layers += p.piece == "layer";
+  EXPECT_EQ(layers, 1) << describe(r);
+  const json& a = r.b.feature.objects.at("B-mc1-0").at("attributes");
+  EXPECT_EQ(a.at("morphcut_mass"), 0);
+}
+
+// One storey carrying a storey 13 m long, 3.6 m deep and 5 m high: a setback, not a tower on a
+// podium (taller than wide, but not taller than long; docs/massing.md, "Roles").
+TEST(Massing, StoreyOnABaseIsASetbackNotATower) {
+  const Result r = run(join({box({0, 0, 0}, {20, 8, 4}), box({3, 2, 4}, {16, 5.6, 9})}));
+  ASSERT_EQ(r.b.status, "ok") << r.b.reason;
+  EXPECT_EQ(r.roles, (Roles{{"main", 1}, {"setback", 1}})) << describe(r);
+  EXPECT_FALSE(r.b.massing.features.tower_on_podium);
+  EXPECT_EQ(r.b.massing.features.setbacks, 1);
+  EXPECT_EQ(r.b.massing.features.tiers, 2);
 }
 
 // Cached outcomes carry the analytics exactly.

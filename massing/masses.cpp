@@ -1,0 +1,183 @@
+#include "massing/masses.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <tuple>
+
+#include "core/hull.hpp"
+#include "core/union_find.hpp"
+#include "massing/plan_geometry.hpp"
+
+namespace mc::massing {
+
+namespace {
+
+double height(const PartMassing& pm) { return pm.z_max - pm.z_min; }
+
+// A part is flat-topped when horizontal upward faces cover this share of its footprint.
+constexpr double kFlatTop = 0.9;
+
+// The neighbour a part rests on: its stacked or inclined contact with the largest area, this part
+// above; nullptr when there is none.
+const Contact* resting_on(const PartMassing& pm) {
+  const Contact* below = nullptr;
+  for (const Contact& c : pm.contacts)
+    if (c.above == 1 && (!below || c.area > below->area)) below = &c;
+  return below;
+}
+
+// Step 2's test: a raised part with few walls of its own, resting on another part, that is a
+// wedge or a slab (it fills at most roof_max_fill of its footprint x height, or is thinner than
+// thin_width).
+bool roof_piece(const PartMassing& pm, const std::vector<PartMassing>& P, const MassingParams& p) {
+  const Contact* below = resting_on(pm);
+  if (pm.grounded || !below) return false;
+  const double h = height(pm);
+  if (!(h > 0) || !(pm.footprint_area > 0)) return false;
+  const bool wedge = pm.volume <= p.roof_max_fill * pm.footprint_area * h || h < p.thin_width;
+  const bool covers = pm.footprint_area >= p.roof_min_cover * P[below->other].footprint_area;
+  return wedge && (pm.wall_share < p.roof_max_wall_share || covers);
+}
+
+// The members' vertices, for the hull of a mass.
+std::vector<Vec3> vertices_of(const std::vector<uint32_t>& members, const std::vector<PolygonMesh>& meshes) {
+  std::vector<Vec3> v;
+  for (uint32_t i : members) v.insert(v.end(), meshes[i].vertices.begin(), meshes[i].vertices.end());
+  return v;
+}
+
+}  // namespace
+
+void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, double ground,
+                  const MassingParams& p) {
+  auto& P = L.parts;
+  const uint32_t n = static_cast<uint32_t>(P.size());
+  L.masses.clear();
+  if (n == 0) return;
+  // Pieces.
+  for (uint32_t i = 0; i < n; ++i) {
+    P[i].piece = "body";
+    if (n > 1 && P[i].width < p.thin_width && !P[i].contacts.empty()) P[i].piece = "layer";
+    else if (roof_piece(P[i], P, p)) P[i].piece = "roof";
+  }
+  // Bodies of one uniform volume (step 3), largest shared faces first.
+  UnionFind uf(n);
+  std::vector<std::vector<uint32_t>> members(n);
+  for (uint32_t i = 0; i < n; ++i) members[i] = {i};
+  std::vector<std::tuple<double, uint32_t, uint32_t>> pairs;
+  for (uint32_t i = 0; i < n; ++i)
+    for (const Contact& c : P[i].contacts)
+      if (c.other > i && c.kind == "side" && P[i].piece == "body" && P[c.other].piece == "body" &&
+          c.area >= p.mass_shared_fraction * std::min(height(P[i]), height(P[c.other])) *
+                        std::min(P[i].width, P[c.other].width))
+        pairs.emplace_back(-c.area, i, c.other);
+  std::sort(pairs.begin(), pairs.end());
+  auto z_range = [&](const std::vector<uint32_t>& m) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (uint32_t k : m) lo = std::min(lo, P[k].z_min), hi = std::max(hi, P[k].z_max);
+    return std::pair{lo, hi};
+  };
+  // (a) one flat roof: every piece flat-topped, tops within the tolerance (bottoms may differ: a
+  // piece flush with the roof over a lower one); (b) one height: tops and bottoms within the
+  // tolerance and together about as convex as one part.
+  auto one_volume = [&](const std::vector<uint32_t>& joint, bool same_top, bool same_bottom) {
+    if (!same_top) return false;
+    if (std::all_of(joint.begin(), joint.end(), [&](uint32_t k) { return P[k].flat_top >= kFlatTop; }))
+      return true;
+    if (!same_bottom) return false;
+    double volume = 0;
+    for (uint32_t k : joint) volume += P[k].volume;
+    const double hull = convex_hull(vertices_of(joint, meshes)).volume;
+    return hull > 0 && volume / hull >= p.mass_convexity;
+  };
+  for (const auto& [neg_area, i, j] : pairs) {
+    const uint32_t a = uf.find(i), b = uf.find(j);
+    if (a == b) continue;
+    const auto [alo, ahi] = z_range(members[a]);
+    const auto [blo, bhi] = z_range(members[b]);
+    const bool same_bottom = std::abs(alo - blo) <= p.mass_height_tolerance;
+    const bool same_top = std::abs(ahi - bhi) <= p.mass_height_tolerance;
+    std::vector<uint32_t> joint = members[a];
+    joint.insert(joint.end(), members[b].begin(), members[b].end());
+    if (!one_volume(joint, same_top, same_bottom)) continue;
+    uf.link(a, b);
+    const uint32_t r = uf.find(a);
+    members[r] = std::move(joint);
+    if (r != a) members[a].clear();
+    if (r != b) members[b].clear();
+  }
+  // Roof pieces join the mass they rest on (lowest first, so a piece on a piece follows it down).
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return P[a].z_min < P[b].z_min; });
+  for (uint32_t i : order)
+    if (P[i].piece == "roof") uf.link(uf.find(resting_on(P[i])->other), uf.find(i));
+  // Layers join the non-layer neighbour they share most with (else any neighbour).
+  for (uint32_t i = 0; i < n; ++i) {
+    if (P[i].piece != "layer") continue;
+    const Contact* best = nullptr;
+    for (bool any : {false, true}) {
+      for (const Contact& c : P[i].contacts)
+        if ((any || P[c.other].piece != "layer") && (!best || c.area > best->area)) best = &c;
+      if (best) break;
+    }
+    if (best) uf.link(uf.find(best->other), uf.find(i));
+  }
+  // Masses in the order of their smallest part index.
+  std::map<uint32_t, int> id_of_root;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t r = uf.find(i);
+    auto [it, fresh] = id_of_root.try_emplace(r, static_cast<int>(L.masses.size()));
+    if (fresh) L.masses.emplace_back();
+    P[i].mass = it->second;
+    L.masses[static_cast<size_t>(it->second)].parts.push_back(i);
+  }
+  // Their geometry.
+  for (MassMassing& m : L.masses) {
+    m.z_min = std::numeric_limits<double>::infinity();
+    m.z_max = -m.z_min;
+    std::vector<mc::io::Polygon2> prints;
+    for (uint32_t i : m.parts) {
+      m.z_min = std::min(m.z_min, P[i].z_min), m.z_max = std::max(m.z_max, P[i].z_max);
+      m.volume += P[i].volume;
+      for (const auto& poly : P[i].footprint) prints.push_back(poly);
+    }
+    m.hull_volume =
+        m.parts.size() == 1 ? P[m.parts[0]].hull_volume : convex_hull(vertices_of(m.parts, meshes)).volume;
+    bool ok = false;
+    const mc::io::MultiPolygon2 u = m.parts.size() == 1 ? P[m.parts[0]].footprint : union_of(prints, ok);
+    m.footprint_area = m.parts.size() == 1 ? P[m.parts[0]].footprint_area : multipolygon_area(u);
+    const PlanExtent e = plan_extent(outer_hull(u));
+    m.width = e.width, m.length = e.length;
+    m.grounded = m.z_min <= ground + p.ground_tolerance;
+  }
+  // Their contacts: the parts' contacts across masses, by kind; the kind with the largest area.
+  std::map<std::pair<int, int>, std::map<std::string, std::pair<double, double>>> acc;
+  for (uint32_t i = 0; i < n; ++i)
+    for (const Contact& c : P[i].contacts) {
+      if (P[c.other].mass == P[i].mass) continue;
+      auto& slot = acc[{P[i].mass, P[c.other].mass}][c.kind];
+      slot.first += c.area;
+      slot.second += c.above * c.area;
+    }
+  for (const auto& [key, kinds] : acc) {
+    Contact c;
+    c.other = static_cast<uint32_t>(key.second);
+    double best = -1;
+    for (const auto& [kind, v] : kinds) {
+      c.area += v.first;
+      if (v.first > best) best = v.first, c.kind = kind;
+    }
+    if (c.kind != "side") {
+      const double up = kinds.at(c.kind).second;
+      c.above = up > 0 ? 1 : up < 0 ? -1 : 0;
+    }
+    L.masses[static_cast<size_t>(key.first)].contacts.push_back(std::move(c));
+  }
+}
+
+}  // namespace mc::massing
