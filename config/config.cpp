@@ -25,15 +25,17 @@ using config_detail::Field;
 struct NamedHelp {  // a run key or a section, with its help for --print-config
   const char* name;
   const char* help;
+  bool affects_outputs = true;  // as Field::affects_outputs
 };
 const NamedHelp kRunKeys[] = {
     {"in_flight",
      "max buildings in flight, and how far ahead the largest is started first (bounds memory); auto = "
-     "max(16, 8 x threads)"},
+     "max(16, 8 x threads)",
+     false},
     {"lod", "input LoD to decompose: highest, or e.g. \"2.2\""},
     {"output_levels", "levels written as BuildingParts: all, or values from decompose.levels"},
     {"log_level",
-     "stderr messages: trace, debug, info (summary), warn (input problems), error, critical or off"},
+     "stderr messages: trace, debug, info (summary), warn (input problems), error, critical or off", false},
 };
 // The sections, in lod.yaml's order, with their help.
 const NamedHelp kSections[] = {
@@ -387,6 +389,16 @@ std::string config_yaml(const Params& params, const RunConfig& run) {
     if (!*f.section) yaml_line(out, "", f.name, yaml_value(j[f.name]), f.help);
   for (const NamedHelp& k : kRunKeys) yaml_line(out, "", k.name, yaml_value(j[k.name]), k.help);
   return out.str();
+}
+
+std::vector<std::string> keys_not_affecting_outputs() {
+  std::vector<std::string> keys;
+  Params p;
+  for (const Field& f : config_detail::fields_of(p))
+    if (!f.affects_outputs) keys.push_back(f.path());
+  for (const NamedHelp& k : kRunKeys)
+    if (!k.affects_outputs) keys.push_back(k.name);
+  return keys;
 }
 
 }  // namespace mc

@@ -32,6 +32,22 @@ LoadedConfig load_config_string(const std::string& yaml, const std::string& sour
 // The configuration in the YAML layout (JSON is YAML, so this loads back to the same values).
 nlohmann::json effective_config_json(const Params& params, const RunConfig& run);
 
+// The keys whose value never changes an output (threads, in_flight, log_level: outputs are
+// byte-identical for any thread count), from the key table; and an effective config without them,
+// which is what the cache key, merge-reports and the HTML page compare.
+std::vector<std::string> keys_not_affecting_outputs();
+template <class Json>  // nlohmann::json or nlohmann::ordered_json, in the YAML layout
+Json outputs_config_json(Json c) {
+  if (!c.is_object()) return c;
+  for (const std::string& key : keys_not_affecting_outputs()) {
+    const auto dot = key.find('.');
+    if (dot == std::string::npos) c.erase(key);
+    else if (c.contains(key.substr(0, dot)) && c[key.substr(0, dot)].is_object())
+      c[key.substr(0, dot)].erase(key.substr(dot + 1));
+  }
+  return c;
+}
+
 // The configuration as a YAML file with every key's help (config/lod.yaml is this for the defaults).
 std::string config_yaml(const Params& params, const RunConfig& run);
 

@@ -66,7 +66,9 @@ std::vector<Field> fields_of(Params& p) {
       {"preprocess", "oracle_rays", &a.oracle_rays, at_least(1),
        "rays per point in the inside/outside majority vote"},
       {"preprocess", "fast_path", &a.fast_path, any(),
-       "an input that is a valid solid is labelled by one clean ray per point instead of the vote"},
+       "an input that is a valid solid is labelled by one clean ray per point (two beside thin wedges) "
+       "instead "
+       "of the vote"},
       {"preprocess", "fill_enclosed", &a.fill_enclosed, any(),
        "a point no ray escapes from (horizon to zenith) is inside, whatever the parity (interior floor "
        "sheets)"},
@@ -164,7 +166,7 @@ std::vector<Field> fields_of(Params& p) {
        "per-building deadline in seconds (best result so far); 0 = none"},
       {"", "max_faces", &p.max_faces, at_least(0, " (0 = no limit)"),
        "buildings with more input faces are skipped as too large; 0 = no limit"},
-      {"", "threads", &p.threads, at_least(0, " (0 = all cores)"), "worker threads; 0 = all cores"},
+      {"", "threads", &p.threads, at_least(0, " (0 = all cores)"), "worker threads; 0 = all cores", false},
   };
 }
 

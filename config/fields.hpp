@@ -52,6 +52,9 @@ struct Field {
   FieldPtr ptr;
   Range range;
   const char* help;
+  // False for settings that never change an output (the outputs are byte-identical for any value):
+  // the cache key, merge-reports' config hash and the HTML page's config leave them out.
+  bool affects_outputs = true;
   std::string path() const { return *section ? std::string(section) + "." + name : name; }
 };
 

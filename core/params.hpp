@@ -39,8 +39,8 @@ struct PreprocessParams {
   bool snap_corners = true;
   int oracle_rays = 5;  // rays per point for the inside/outside majority vote
   // An input that is a valid solid (closed, 2-manifold, outward, not self-intersecting; exact
-  // predicates) is labelled by two clean rays per point where they agree instead of the whole
-  // vote (docs/algorithm.md §6.6).
+  // predicates) is labelled by one clean ray per point (two that agree beside a thin wedge), the
+  // vote only where a ray is not clean (docs/algorithm.md §6.6).
   bool fast_path = true;
   // With the fast path, a cell the surface only grazes is voted in a band along its facets
   // (docs/algorithm.md §7.3). Not a configuration key: tests compare with the full vote.

@@ -36,9 +36,7 @@ constexpr int kFormat = 5;
 // (outputs are byte-identical for any thread count). Everything else in the effective config is
 // in the key, the deadline included.
 json key_config(const Params& p, const RunConfig& rc) {
-  json c = effective_config_json(p, rc);
-  for (const char* k : {"threads", "in_flight", "log_level"}) c.erase(k);
-  return c;
+  return outputs_config_json(effective_config_json(p, rc));
 }
 
 // A coordinate as the file stores it: the integer on the transform grid (the reader applied

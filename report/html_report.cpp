@@ -24,6 +24,7 @@
 #include "report/html_assets.hpp"
 #include "output/level_views.hpp"
 #include "io/sha256.hpp"
+#include "config/config.hpp"
 
 namespace mc::report {
 
@@ -100,9 +101,7 @@ void run_report_city_files(const ojson& report, const std::string& report_path,
 // The settings that shape results (as merge-reports hashes them: worker threads and friends aside).
 std::string config_sha256(const ojson& config) {
   if (!config.is_object()) return {};
-  ojson c = config;
-  for (const char* k : {"threads", "in_flight", "log_level"}) c.erase(k);
-  return mc::io::sha256_hex(c.dump());
+  return mc::io::sha256_hex(mc::outputs_config_json(config).dump());
 }
 
 std::string html_escape(const std::string& s) {

@@ -16,6 +16,7 @@
 #include "io/scratch_file.hpp"
 #include "report/outcome.hpp"
 #include "io/sha256.hpp"
+#include "config/config.hpp"
 
 namespace mc::report {
 
@@ -86,12 +87,7 @@ std::vector<std::string> csv_fields(std::string_view record) {
 }
 
 // The settings that shape results; worker threads and friends may differ between array tasks.
-ojson result_config(const ojson& config) {
-  ojson c = config;
-  if (c.is_object())
-    for (const char* k : {"threads", "in_flight", "log_level"}) c.erase(k);
-  return c;
-}
+ojson result_config(const ojson& config) { return mc::outputs_config_json(config); }
 
 const ojson& member(const ojson& j, const char* key) {
   static const ojson null_value;

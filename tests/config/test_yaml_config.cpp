@@ -167,4 +167,19 @@ TEST(YamlConfig, MissingFileIsAConfigError) {
   EXPECT_THROW(mc::load_config_file("/nonexistent/lod.yaml"), mc::ConfigError);
 }
 
+// The settings that never change an output come from the key table, and only those are left out
+// of what the cache, merge-reports and the HTML page compare.
+TEST(YamlConfig, KeysNotAffectingOutputsComeFromTheTable) {
+  EXPECT_EQ(mc::keys_not_affecting_outputs(),
+            (std::vector<std::string>{"threads", "in_flight", "log_level"}));
+  const mc::LoadedConfig cfg = mc::load_config_string("threads: 3\nin_flight: 7\ntimeout_s: 5\n");
+  const nlohmann::json all = mc::effective_config_json(cfg.params, cfg.run);
+  const nlohmann::json kept = mc::outputs_config_json(all);
+  EXPECT_FALSE(kept.contains("threads"));
+  EXPECT_FALSE(kept.contains("in_flight"));
+  EXPECT_FALSE(kept.contains("log_level"));
+  EXPECT_EQ(kept.at("timeout_s"), 5);
+  EXPECT_EQ(kept.size() + 3, all.size());
+}
+
 }  // namespace
