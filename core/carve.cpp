@@ -1,3 +1,4 @@
+#include "core/hashing.hpp"
 #include "core/carve.hpp"
 
 #include "core/surface.hpp"
@@ -84,13 +85,6 @@ double hair_gap(const CellComplex& cx, const CellVertices& c, const CarvePlane& 
   return gap;
 }
 
-uint64_t mix(uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 // Uniform point in tetrahedron (a, b, c, d) from a point of the unit cube (Rocchini-Cignoni fold).
 Vec3 fold_to_tet(double s, double t, double u, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   if (s + t > 1) {
@@ -135,7 +129,7 @@ std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, u
   // R3 low-discrepancy sequence with a seeded offset; counts per tetrahedron by cumulative rounding.
   constexpr double g = 1.22074408460575947536;
   const double a1 = 1 / g, a2 = 1 / (g * g), a3 = 1 / (g * g * g);
-  const uint64_t h = mix(seed);
+  const uint64_t h = splitmix64(seed);
   double o1 = (h & 0xffff) / 65536.0, o2 = ((h >> 16) & 0xffff) / 65536.0,
          o3 = ((h >> 32) & 0xffff) / 65536.0;
   double cum = 0;

@@ -31,8 +31,8 @@ double seconds_since(Clock::time_point t0) {
 }
 
 // Whole-building statistics of a level (normalised by the singleton cell R, docs/algorithm.md §11.3).
-void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const std::vector<LevelPart>& work,
-                      const AnalysisContext& ctx, const Objective& obj, LevelResult& out) {
+void level_statistics(const Preprocessed& pre, const std::vector<LevelPart>& work, const AnalysisContext& ctx,
+                      const Objective& obj, LevelResult& out) {
   const CellComplex& cx = *pre.complex;
   const LevelSpace ls(cx, work);
   const CellSpace& space = ls.space;
@@ -67,7 +67,7 @@ void level_statistics(const Preprocessed& pre, const DecomposeParams& p, const s
   out.remaining_concave = sum_e;
   out.g = obj.g(work.size(), sum_delta);
   out.h = obj.h(sum_e, sum_delta);
-  out.cost = out.g + p.sigma * out.h;
+  out.cost = obj.cost(out.g, out.h);
 }
 
 }  // namespace
@@ -161,7 +161,7 @@ Decomposition decompose(Preprocessed& pre, const DecomposeParams& p, Clock::time
       if (out.reason.empty()) out.reason = "deadline reached before LoD " + std::to_string(level.lod);
       level.truncated = true;
     }
-    level_statistics(pre, p, work, ctx, obj, level);
+    level_statistics(pre, work, ctx, obj, level);
     level.seconds = seconds_since(tl);
     out.levels.push_back(std::move(level));
   }

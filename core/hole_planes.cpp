@@ -1,4 +1,5 @@
 #include "core/hole_planes.hpp"
+#include "core/geometry.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -56,16 +57,17 @@ std::vector<HolePlane> hole_planes(const PolygonMesh& mesh, double dist, double 
   for (uint32_t fi = 0; fi < mesh.faces.size(); ++fi) {
     const Polygon& f = mesh.faces[fi];
     Vec3 newell{0, 0, 0};
-    for (const auto& r : f.rings)
+    for (const auto& r : f.rings) {
+      newell += ring_area_vector(mesh.vertices, r);
       for (size_t i = 0; i < r.size(); ++i) {
         const uint32_t a = r[i], b = r[(i + 1) % r.size()];
         faces[fi].box.add(mesh.vertices[a]);
-        newell += cross(mesh.vertices[a], mesh.vertices[b]);
         if (a != b) {
           ++uses[{std::min(a, b), std::max(a, b)}];
           edge_face[{std::min(a, b), std::max(a, b)}] = fi;
         }
       }
+    }
     const double nn = norm(newell);
     faces[fi].horizontal_ish = nn > 0 && std::abs(newell.z) / nn > 0.17364817766;  // sin 10°
   }
@@ -111,23 +113,17 @@ std::vector<HolePlane> hole_planes(const PolygonMesh& mesh, double dist, double 
     }
     if (loop.size() < 3) continue;
     // Plane by PCA, area by the Newell normal of the ordered loop.
-    Vec3 c{0, 0, 0}, newell{0, 0, 0};
-    for (uint32_t v : loop) c += mesh.vertices[v];
-    c = c / static_cast<double>(loop.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     HolePlane h;
-    for (size_t i = 0; i < loop.size(); ++i) {
-      const Vec3 p = mesh.vertices[loop[i]] - c, q = mesh.vertices[loop[(i + 1) % loop.size()]] - c;
-      const Eigen::Vector3d e(p.x, p.y, p.z);
-      cov += e * e.transpose();
-      newell += cross(p, q);
-      h.bbox.add(mesh.vertices[loop[i]]);
+    std::vector<Vec3> points;
+    for (uint32_t v : loop) {
+      points.push_back(mesh.vertices[v]);
+      h.bbox.add(mesh.vertices[v]);
     }
-    h.area = norm(newell) / 2;
+    h.area = norm(ring_area_vector(mesh.vertices, loop)) / 2;
     if (h.area < min_area) continue;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-    const Eigen::Vector3d n = es.eigenvectors().col(0);  // smallest eigenvalue
-    h.plane.n = normalized(Vec3{n.x(), n.y(), n.z()});
+    Vec3 c;
+    const Eigen::Matrix3d cov = centred_covariance(points, c);
+    h.plane.n = normalized(principal_axes(cov).normal);
     h.plane.d = -dot(h.plane.n, c);
     if (!canonicalize(h.plane)) continue;
     double worst = 0;

@@ -23,6 +23,8 @@ struct Objective {
   }
   double g(size_t parts, double sum_delta) const { return parts / n_max + (delta0 - sum_delta) / delta0; }
   double h(double sum_e, double sum_delta) const { return sum_e / (k * n_max) + sum_delta / delta0; }
+  // f = g + σh.
+  double cost(double g_value, double h_value) const { return g_value + sigma * h_value; }
   // One part's share of g + σh (the cost is a sum over parts plus a constant).
   double part_cost(double delta, double e_all) const {
     return 1.0 / n_max - delta / delta0 + sigma * (e_all / (k * n_max) + delta / delta0);

@@ -1,3 +1,4 @@
+#include "core/hashing.hpp"
 #include "core/oracle.hpp"
 #include "core/embree_device.hpp"
 #include "core/fast_sincos.hpp"
@@ -60,15 +61,6 @@ RTCRay make_ray(const Vec3& o, const Vec3& dir) {
   ray.id = 0;
   return ray;
 }
-
-uint64_t splitmix64(uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-double unit_double(uint64_t x) { return static_cast<double>(x >> 11) * 0x1.0p-53; }
 
 }  // namespace
 

@@ -136,7 +136,7 @@ class Search {
     n.parts = std::move(parts);
     n.g = obj_.g(n.parts.size(), sd);
     n.h = obj_.h(se, sd);
-    n.cost = n.g + obj_.sigma * n.h;
+    n.cost = obj_.cost(n.g, n.h);
     n.seq = seq_++;
     return n;
   }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "core/geometry.hpp"
 #include "core/soup.hpp"
 
 namespace mc {
@@ -48,12 +49,9 @@ struct Moments {
   Plane fit(const Vec3& hint) const {
     const Eigen::Vector3d c = s / w;
     const Eigen::Matrix3d cov = ss / w - c * c.transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+    const PrincipalAxes axes = principal_axes(cov);
     Vec3 n = hint;
-    if (es.eigenvalues()(1) > 1e-12 * std::max(1.0, es.eigenvalues()(2))) {
-      const Eigen::Vector3d m = es.eigenvectors().col(0);
-      n = normalized(Vec3{m(0), m(1), m(2)});
-    }
+    if (axes.eigenvalues(1) > 1e-12 * std::max(1.0, axes.eigenvalues(2))) n = normalized(axes.normal);
     if (dot(n, hint) < 0) n = -n;
     const Vec3 cv{c(0), c(1), c(2)};
     return Plane{n, -dot(n, cv)};

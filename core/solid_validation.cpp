@@ -36,6 +36,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "core/geometry.hpp"
 #include "core/hull.hpp"
 #include "core/union_find.hpp"
 
@@ -107,30 +108,15 @@ class ErrorLog {
 // Least-squares plane of points: centroid and the covariance's smallest eigenvector.
 Plane fit_plane(const std::vector<Vec3>& pts) {
   Vec3 c;
-  for (const auto& p : pts) c += p;
-  c = c / static_cast<double>(pts.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) {
-    const Eigen::Vector3d d(p.x - c.x, p.y - c.y, p.z - c.z);
-    cov += d * d.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-  const Eigen::Vector3d n = es.eigenvectors().col(0);
   Plane pl;
-  pl.n = {n.x(), n.y(), n.z()};
+  pl.n = principal_axes(centred_covariance(pts, c)).normal;
   pl.d = -dot(pl.n, c);
   return pl;
 }
 
 // Newell normal of a ring (its length is twice the ring's area).
 Vec3 newell(const std::vector<uint32_t>& ring, const std::vector<Vec3>& v) {
-  Vec3 n;
-  const Vec3& o = v[ring[0]];  // relative coordinates: city coordinates are large
-  for (size_t i = 0; i < ring.size(); ++i) {
-    const Vec3 a = v[ring[i]] - o, b = v[ring[(i + 1) % ring.size()]] - o;
-    n += {(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-  }
-  return n;
+  return ring_area_vector(v, ring);
 }
 
 void mark_domain(CDT& cdt, CDT::Face_handle start, int nesting, std::list<CDT::Edge>& border) {

@@ -18,16 +18,6 @@
 
 namespace mc {
 
-Vec3 ring_area_vector(const std::vector<Vec3>& vertices, const std::vector<uint32_t>& ring) {
-  // Newell's method, relative to the first vertex so large georeferenced coordinates do not
-  // cancel catastrophically.
-  Vec3 s;
-  if (ring.size() < 3) return s;
-  const Vec3 o = vertices[ring[0]];
-  for (size_t i = 1; i + 1 < ring.size(); ++i) s += cross(vertices[ring[i]] - o, vertices[ring[i + 1]] - o);
-  return s;
-}
-
 FaceGeometry face_geometry(const PolygonMesh& mesh, const Polygon& face) {
   FaceGeometry g;
   if (face.rings.empty()) return g;
@@ -289,25 +279,13 @@ void mark_domains(CDT& cdt) {
 Vec3 fit_normal(const std::vector<Vec3>& vs, const Polygon& f) {
   Vec3 n = normalized(ring_area_vector(vs, f.rings[0]));
   if (norm(n) > 0.5) return n;
+  std::vector<Vec3> points;
+  for (const auto& r : f.rings)
+    for (uint32_t v : r) points.push_back(vs[v]);
   Vec3 c;
-  size_t k = 0;
-  for (const auto& r : f.rings)
-    for (uint32_t v : r) {
-      c += vs[v];
-      ++k;
-    }
-  c = c / static_cast<double>(k);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& r : f.rings)
-    for (uint32_t v : r) {
-      const Vec3 d = vs[v] - c;
-      const Eigen::Vector3d e(d.x, d.y, d.z);
-      cov += e * e.transpose();
-    }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-  if (es.eigenvalues()(1) <= 0) return {};  // collinear: no plane
-  const Eigen::Vector3d m = es.eigenvectors().col(0);
-  return normalized(Vec3{m(0), m(1), m(2)});
+  const PrincipalAxes axes = principal_axes(centred_covariance(points, c));
+  if (axes.eigenvalues(1) <= 0) return {};  // collinear: no plane
+  return normalized(axes.normal);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry.hpp"
 #include "core/polygon_mesh.hpp"
 #include "core/vec3.hpp"
 
@@ -42,8 +43,6 @@ TriangleSoup triangulate(const PolygonMesh& mesh);
 Vec3 bbox_center(const PolygonMesh& mesh);
 void translate(PolygonMesh& mesh, Vec3 offset);
 
-// Area vector of one ring (Newell): direction = ring normal, length = 2 * area.
-Vec3 ring_area_vector(const std::vector<Vec3>& vertices, const std::vector<uint32_t>& ring);
 // Unit normal of the outer ring (zero vector when degenerate) and the face's area
 // (outer area minus hole areas, as seen along the outer normal; never negative).
 struct FaceGeometry {

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/geometry.hpp"
 #include "core/polygon_mesh.hpp"
 #include "io/atomic_file.hpp"
 #include "io/cityjson_building.hpp"
@@ -185,18 +186,7 @@ struct Building {
 };
 
 Vec3 newell_normal(const std::vector<Vec3>& vs, const Polygon& f) {
-  Vec3 n{0, 0, 0};
-  if (f.rings.empty()) return n;
-  const auto& r = f.rings[0];
-  for (size_t i = 0; i < r.size(); ++i) {
-    const Vec3& a = vs[r[i]];
-    const Vec3& b = vs[r[(i + 1) % r.size()]];
-    n.x += (a.y - b.y) * (a.z + b.z);
-    n.y += (a.z - b.z) * (a.x + b.x);
-    n.z += (a.x - b.x) * (a.y + b.y);
-  }
-  const double l = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-  return l > 0 ? Vec3{n.x / l, n.y / l, n.z / l} : Vec3{0, 0, 0};
+  return f.rings.empty() ? Vec3{0, 0, 0} : normalized(ring_area_vector(vs, f.rings[0]));
 }
 
 // The plan view's outline of a building: its GroundSurface faces, else its downward faces, else
