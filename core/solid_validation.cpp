@@ -36,6 +36,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "core/cdt_domains.hpp"
 #include "core/geometry.hpp"
 #include "core/hull.hpp"
 #include "core/union_find.hpp"
@@ -119,33 +120,10 @@ Vec3 newell(const std::vector<uint32_t>& ring, const std::vector<Vec3>& v) {
   return ring_area_vector(v, ring);
 }
 
-void mark_domain(CDT& cdt, CDT::Face_handle start, int nesting, std::list<CDT::Edge>& border) {
-  if (start->info().nesting != -1) return;
-  std::list<CDT::Face_handle> queue{start};
-  while (!queue.empty()) {
-    CDT::Face_handle f = queue.front();
-    queue.pop_front();
-    if (f->info().nesting != -1) continue;
-    f->info().nesting = nesting;
-    for (int i = 0; i < 3; ++i) {
-      CDT::Face_handle n = f->neighbor(i);
-      if (n->info().nesting != -1) continue;
-      if (cdt.is_constrained(CDT::Edge(f, i))) border.emplace_back(f, i);
-      else queue.push_back(n);
-    }
-  }
-}
-
-// Faces at odd nesting depth from the infinite face are inside the polygon (holes excluded).
+// Faces at odd nesting depth from the infinite face are inside the polygon (holes excluded;
+// core/cdt_domains.hpp).
 void mark_domains(CDT& cdt) {
-  std::list<CDT::Edge> border;
-  mark_domain(cdt, cdt.infinite_face(), 0, border);
-  while (!border.empty()) {
-    const CDT::Edge e = border.front();
-    border.pop_front();
-    CDT::Face_handle n = e.first->neighbor(e.second);
-    if (n->info().nesting == -1) mark_domain(cdt, n, e.first->info().nesting + 1, border);
-  }
+  mark_nesting(cdt, [](CDT::Face_handle f) -> int& { return f->info().nesting; });
 }
 
 struct Frame {

@@ -13,6 +13,7 @@
 #include <Eigen/Eigenvalues>
 #include <list>
 
+#include "core/cdt_domains.hpp"
 #include "core/plane.hpp"
 #include "core/union_find.hpp"
 
@@ -245,33 +246,9 @@ using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 // Exact_predicates_tag: crossing constraints (self-intersecting rings) are split, not rejected.
 using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
 
-// Nesting level of every face: 0 outside, +1 across each constraint (CGAL's polygon example).
+// Nesting level of every face (core/cdt_domains.hpp).
 void mark_domains(CDT& cdt) {
-  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
-  std::list<CDT::Edge> border;
-  auto flood = [&](CDT::Face_handle start, int level) {
-    if (start->info() != -1) return;
-    std::list<CDT::Face_handle> queue{start};
-    while (!queue.empty()) {
-      CDT::Face_handle f = queue.front();
-      queue.pop_front();
-      if (f->info() != -1) continue;
-      f->info() = level;
-      for (int i = 0; i < 3; ++i) {
-        CDT::Face_handle n = f->neighbor(i);
-        if (n->info() != -1) continue;
-        if (cdt.is_constrained(CDT::Edge(f, i))) border.push_back(CDT::Edge(f, i));
-        else queue.push_back(n);
-      }
-    }
-  };
-  flood(cdt.infinite_face(), 0);
-  while (!border.empty()) {
-    CDT::Edge e = border.front();
-    border.pop_front();
-    CDT::Face_handle n = e.first->neighbor(e.second);
-    if (n->info() == -1) flood(n, e.first->info() + 1);
-  }
+  mark_nesting(cdt, [](CDT::Face_handle f) -> int& { return f->info(); });
 }
 
 // Best-fit normal of a face: the Newell normal of the outer ring, or the smallest principal
