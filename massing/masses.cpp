@@ -49,22 +49,23 @@ std::vector<Vec3> vertices_of(const std::vector<uint32_t>& members, const std::v
   return v;
 }
 
-}  // namespace
-
-void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, double ground,
-                  const MassingParams& p) {
-  auto& P = L.parts;
-  const uint32_t n = static_cast<uint32_t>(P.size());
-  L.masses.clear();
-  if (n == 0) return;
-  // Pieces.
-  for (uint32_t i = 0; i < n; ++i) {
-    P[i].piece = "body";
-    if (n > 1 && P[i].width < p.thin_width && !P[i].contacts.empty()) P[i].piece = "layer";
-    else if (roof_piece(P[i], P, p)) P[i].piece = "roof";
+// Step 1: what kind of piece each part is.
+void classify_pieces(std::vector<PartMassing>& P, const MassingParams& p) {
+  const size_t n = P.size();
+  for (auto& pm : P) {
+    pm.piece = "body";
+    if (n > 1 && pm.width < p.thin_width && !pm.contacts.empty()) pm.piece = "layer";
+    else if (roof_piece(pm, P, p)) pm.piece = "roof";
   }
-  // Bodies of one uniform volume (step 3), largest shared faces first.
-  UnionFind uf(n);
+}
+
+// Step 2: bodies of one volume, pairs by decreasing shared vertical area: (a) one flat roof, every
+// piece flat-topped, tops within the tolerance (bottoms may differ: a piece flush with the roof
+// over a lower one); (b) one height, tops and bottoms within the tolerance, together about as
+// convex as one part.
+void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMesh>& meshes,
+                 const MassingParams& p, UnionFind& uf) {
+  const uint32_t n = static_cast<uint32_t>(P.size());
   std::vector<std::vector<uint32_t>> members(n);
   for (uint32_t i = 0; i < n; ++i) members[i] = {i};
   std::vector<std::tuple<double, uint32_t, uint32_t>> pairs;
@@ -80,9 +81,6 @@ void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, doubl
     for (uint32_t k : m) lo = std::min(lo, P[k].z_min), hi = std::max(hi, P[k].z_max);
     return std::pair{lo, hi};
   };
-  // (a) one flat roof: every piece flat-topped, tops within the tolerance (bottoms may differ: a
-  // piece flush with the roof over a lower one); (b) one height: tops and bottoms within the
-  // tolerance and together about as convex as one part.
   auto one_volume = [&](const std::vector<uint32_t>& joint, bool same_top, bool same_bottom) {
     if (!same_top) return false;
     if (std::all_of(joint.begin(), joint.end(), [&](uint32_t k) { return P[k].flat_top >= kFlatTop; }))
@@ -98,25 +96,29 @@ void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, doubl
     if (a == b) continue;
     const auto [alo, ahi] = z_range(members[a]);
     const auto [blo, bhi] = z_range(members[b]);
-    const bool same_bottom = std::abs(alo - blo) <= p.mass_height_tolerance;
-    const bool same_top = std::abs(ahi - bhi) <= p.mass_height_tolerance;
     std::vector<uint32_t> joint = members[a];
     joint.insert(joint.end(), members[b].begin(), members[b].end());
-    if (!one_volume(joint, same_top, same_bottom)) continue;
+    if (!one_volume(joint, std::abs(ahi - bhi) <= p.mass_height_tolerance,
+                    std::abs(alo - blo) <= p.mass_height_tolerance))
+      continue;
     uf.link(a, b);
     const uint32_t r = uf.find(a);
     members[r] = std::move(joint);
     if (r != a) members[a].clear();
     if (r != b) members[b].clear();
   }
-  // Roof pieces join the mass they rest on (lowest first, so a piece on a piece follows it down).
+}
+
+// Step 3: roof pieces join the mass they rest on (lowest first, so a piece on a piece follows it
+// down). Step 4: layers join the non-layer neighbour they share most with (else any neighbour).
+void attach_roofs_and_layers(const std::vector<PartMassing>& P, UnionFind& uf) {
+  const uint32_t n = static_cast<uint32_t>(P.size());
   std::vector<uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(),
                    [&](uint32_t a, uint32_t b) { return P[a].z_min < P[b].z_min; });
   for (uint32_t i : order)
     if (P[i].piece == "roof") uf.link(uf.find(resting_on(P[i])->other), uf.find(i));
-  // Layers join the non-layer neighbour they share most with (else any neighbour).
   for (uint32_t i = 0; i < n; ++i) {
     if (P[i].piece != "layer") continue;
     const Contact* best = nullptr;
@@ -127,16 +129,19 @@ void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, doubl
     }
     if (best) uf.link(uf.find(best->other), uf.find(i));
   }
-  // Masses in the order of their smallest part index.
+}
+
+// The masses in the order of their smallest part index, with their geometry.
+void measure_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, double ground,
+                    const MassingParams& p, UnionFind& uf) {
+  auto& P = L.parts;
   std::map<uint32_t, int> id_of_root;
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t r = uf.find(i);
-    auto [it, fresh] = id_of_root.try_emplace(r, static_cast<int>(L.masses.size()));
+  for (uint32_t i = 0; i < P.size(); ++i) {
+    auto [it, fresh] = id_of_root.try_emplace(uf.find(i), static_cast<int>(L.masses.size()));
     if (fresh) L.masses.emplace_back();
     P[i].mass = it->second;
     L.masses[static_cast<size_t>(it->second)].parts.push_back(i);
   }
-  // Their geometry.
   for (MassMassing& m : L.masses) {
     m.z_min = std::numeric_limits<double>::infinity();
     m.z_max = -m.z_min;
@@ -155,9 +160,13 @@ void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, doubl
     m.width = e.width, m.length = e.length;
     m.grounded = m.z_min <= ground + p.ground_tolerance;
   }
-  // Their contacts: the parts' contacts across masses, by kind; the kind with the largest area.
+}
+
+// The masses' contacts: the parts' contacts across masses, by kind; the kind with the largest area.
+void mass_contacts(LevelMassing& L) {
+  const auto& P = L.parts;
   std::map<std::pair<int, int>, std::map<std::string, std::pair<double, double>>> acc;
-  for (uint32_t i = 0; i < n; ++i)
+  for (uint32_t i = 0; i < P.size(); ++i)
     for (const Contact& c : P[i].contacts) {
       if (P[c.other].mass == P[i].mass) continue;
       auto& slot = acc[{P[i].mass, P[c.other].mass}][c.kind];
@@ -178,6 +187,20 @@ void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, doubl
     }
     L.masses[static_cast<size_t>(key.first)].contacts.push_back(std::move(c));
   }
+}
+
+}  // namespace
+
+void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, double ground,
+                  const MassingParams& p) {
+  L.masses.clear();
+  if (L.parts.empty()) return;
+  classify_pieces(L.parts, p);
+  UnionFind uf(static_cast<uint32_t>(L.parts.size()));
+  join_bodies(L.parts, meshes, p, uf);
+  attach_roofs_and_layers(L.parts, uf);
+  measure_masses(L, meshes, ground, p, uf);
+  mass_contacts(L);
 }
 
 }  // namespace mc::massing

@@ -1,12 +1,12 @@
 // Parts grouped into masses as a person sees them (docs/massing.md, "Masses"), before roles:
-//   1. a part narrower in plan than thin_width (a façade layer, a wall skin) is a layer of the mass
-//      of the neighbour it shares most with;
-//   2. a raised part with few walls of its own (a gable wedge, a hip piece, a valley piece, a roof
-//      slab) resting on a part is a roof piece of that part's mass, whatever the contact below;
-//   3. the other parts (bodies) are one mass where they are pieces of one uniform volume: tops and
-//      bottoms within mass_height_tolerance, a shared vertical face of at least
-//      mass_shared_fraction x the smaller height x the smaller width, and together about as convex
-//      as one part (mass_convexity).
+//   1. pieces: a part narrower in plan than thin_width (a façade layer, a wall skin) is a layer;
+//      a raised wedge or slab with few walls of its own, or covering roof_min_cover of what it
+//      rests on, is a roof piece (whatever the contact below); every other part is a body;
+//   2. bodies sharing a vertical face of at least mass_shared_fraction x the smaller height x the
+//      smaller width are one mass when they have one flat roof (tops within
+//      mass_height_tolerance) or one height (tops and bottoms within it) and are together about
+//      as convex as one part (mass_convexity);
+//   3. roof pieces join the mass they rest on; 4. layers the mass they lean on.
 // Every mass gets its geometry (z range, volume, hull, footprint union, width and length) and its
 // contacts with the other masses.
 #pragma once
