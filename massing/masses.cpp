@@ -59,10 +59,10 @@ void classify_pieces(std::vector<PartMassing>& P, const MassingParams& p) {
   }
 }
 
-// Step 2: bodies of one volume, pairs by decreasing shared vertical area: (a) one flat roof, every
-// piece flat-topped, tops within the tolerance (bottoms may differ: a piece flush with the roof
-// over a lower one); (b) one height, tops and bottoms within the tolerance, together about as
-// convex as one part.
+// Step 2: bodies of one volume, pairs by decreasing shared vertical area, tops within the
+// tolerance and (a) bottoms apart: a piece standing on something lower, flush with the top of the
+// body beside it (an overhang, an upper storey over an annex); or bottoms within the tolerance too
+// and (b) one flat roof, every piece flat-topped, or (c) together about as convex as one part.
 void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMesh>& meshes,
                  const MassingParams& p, UnionFind& uf) {
   const uint32_t n = static_cast<uint32_t>(P.size());
@@ -83,10 +83,10 @@ void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMes
   };
   auto one_volume = [&](const std::vector<uint32_t>& joint, bool same_top, bool same_bottom) {
     if (!same_top) return false;
+    if (!same_bottom) return true;  // (a) a piece flush with the top of a taller one beside it
     if (std::all_of(joint.begin(), joint.end(), [&](uint32_t k) { return P[k].flat_top >= kFlatTop; }))
-      return true;
-    if (!same_bottom) return false;
-    double volume = 0;
+      return true;      // (b) one flat roof
+    double volume = 0;  // (c) one height and about as convex as one part
     for (uint32_t k : joint) volume += P[k].volume;
     const double hull = convex_hull(vertices_of(joint, meshes)).volume;
     return hull > 0 && volume / hull >= p.mass_convexity;

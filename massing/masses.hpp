@@ -3,9 +3,10 @@
 //      a raised wedge or slab with few walls of its own, or covering roof_min_cover of what it
 //      rests on, is a roof piece (whatever the contact below); every other part is a body;
 //   2. bodies sharing a vertical face of at least mass_shared_fraction x the smaller height x the
-//      smaller width are one mass when they have one flat roof (tops within
-//      mass_height_tolerance) or one height (tops and bottoms within it) and are together about
-//      as convex as one part (mass_convexity);
+//      smaller width, with tops within mass_height_tolerance, are one mass when one stands on
+//      something lower (bottoms apart: flush with the other's top), or, bottoms within the
+//      tolerance too, when they have one flat roof or are together about as convex as one part
+//      (mass_convexity);
 //   3. roof pieces join the mass they rest on; 4. layers the mass they lean on.
 // Every mass gets its geometry (z range, volume, hull, footprint union, width and length) and its
 // contacts with the other masses.
