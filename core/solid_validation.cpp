@@ -27,6 +27,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 #include <list>
 #include <map>
@@ -1009,6 +1010,70 @@ bool hull_facet_separates(const std::vector<Vec3>& a, const std::vector<Vec3>& b
 
 }  // namespace
 
+namespace {
+
+// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+double point_triangle_distance2(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return dot(ap, ap);
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return dot(bp, bp);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const Vec3 q = a + ab * (d1 / (d1 - d3));
+    return dot(p - q, p - q);
+  }
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return dot(cp, cp);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const Vec3 q = a + ac * (d2 / (d2 - d6));
+    return dot(p - q, p - q);
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const Vec3 q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    return dot(p - q, p - q);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const Vec3 q = a + ab * (vb * denom) + ac * (vc * denom);
+  return dot(p - q, p - q);
+}
+
+}  // namespace
+
+bool min_distance_beyond(const TriangleShell& a, const TriangleShell& b, double d) {
+  std::vector<Vec3> mine = b.points;
+  std::sort(mine.begin(), mine.end(),
+            [](const Vec3& u, const Vec3& v) { return std::tie(u.x, u.y, u.z) < std::tie(v.x, v.y, v.z); });
+  const double d2 = d * d;
+  for (const Vec3& p : a.points) {
+    if (std::binary_search(mine.begin(), mine.end(), p, [](const Vec3& u, const Vec3& v) {
+          return std::tie(u.x, u.y, u.z) < std::tie(v.x, v.y, v.z);
+        }))
+      continue;  // a vertex of both: on the common surface
+    for (const auto& t : b.triangles)
+      if (point_triangle_distance2(p, b.points[t[0]], b.points[t[1]], b.points[t[2]]) <= d2) return false;
+  }
+  return true;
+}
+
+bool plane_separates(const Vec3& p, const Vec3& q, const Vec3& r, const std::vector<Vec3>& a,
+                     const std::vector<Vec3>& b) {
+  const K::Point_3 t0(p.x, p.y, p.z), t1(q.x, q.y, q.z), t2(r.x, r.y, r.z);
+  if (CGAL::collinear(t0, t1, t2)) return false;
+  auto side_of = [&](const std::vector<Vec3>& pts, CGAL::Orientation not_allowed) {
+    return std::none_of(pts.begin(), pts.end(), [&](const Vec3& v) {
+      return CGAL::orientation(t0, t1, t2, K::Point_3(v.x, v.y, v.z)) == not_allowed;
+    });
+  };
+  return (side_of(a, CGAL::POSITIVE) && side_of(b, CGAL::NEGATIVE)) ||
+         (side_of(a, CGAL::NEGATIVE) && side_of(b, CGAL::POSITIVE));
+}
+
 bool interiors_overlap(const TriangleShell& a, const TriangleShell& b, size_t* exact_tests) {
   BBox ba, bb;
   for (const Vec3& p : a.points) ba.add(p);
@@ -1017,6 +1082,41 @@ bool interiors_overlap(const TriangleShell& a, const TriangleShell& b, size_t* e
     if (ba.hi[axis] <= bb.lo[axis] || bb.hi[axis] <= ba.lo[axis]) return false;  // at most touching
   if (hull_facet_separates(a.points, b.points) || hull_facet_separates(b.points, a.points)) return false;
   if (exact_tests) ++*exact_tests;
+  return interiors_overlap_exact(a, b);
+}
+
+std::vector<std::array<Vec3, 3>> hull_facets(const std::vector<Vec3>& points) {
+  std::vector<K::Point_3> pa;
+  for (const Vec3& p : points) pa.emplace_back(p.x, p.y, p.z);
+  Mesh hull;
+  CGAL::convex_hull_3(pa.begin(), pa.end(), hull);
+  std::vector<std::array<Vec3, 3>> out;
+  for (auto f : hull.faces()) {
+    std::array<Vec3, 3> t;
+    int i = 0;
+    for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull))
+      if (i < 3) {
+        const K::Point_3& q = hull.point(v);
+        t[i++] = {q.x(), q.y(), q.z()};
+      }
+    out.push_back(t);
+  }
+  return out;
+}
+
+bool facet_separates(const std::vector<std::array<Vec3, 3>>& facets, const std::vector<Vec3>& other) {
+  std::vector<K::Point_3> pb;
+  for (const Vec3& p : other) pb.emplace_back(p.x, p.y, p.z);
+  for (const auto& f : facets) {
+    const K::Point_3 t0(f[0].x, f[0].y, f[0].z), t1(f[1].x, f[1].y, f[1].z), t2(f[2].x, f[2].y, f[2].z);
+    if (std::all_of(pb.begin(), pb.end(),
+                    [&](const K::Point_3& q) { return CGAL::orientation(t0, t1, t2, q) != CGAL::NEGATIVE; }))
+      return true;
+  }
+  return false;
+}
+
+bool interiors_overlap_exact(const TriangleShell& a, const TriangleShell& b) {
   using EK = CGAL::Exact_predicates_exact_constructions_kernel;
   using EMesh = CGAL::Surface_mesh<EK::Point_3>;
   const auto exact_mesh = [](const TriangleShell& s) {

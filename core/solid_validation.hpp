@@ -122,6 +122,21 @@ std::optional<Common> common_volume(const TriangleShell& a, const TriangleShell&
 // counts the pairs that needed exact constructions (the others are told apart by their boxes or
 // a convex hull facet with exact predicates).
 bool interiors_overlap(const TriangleShell& a, const TriangleShell& b, size_t* exact_tests = nullptr);
+// Does the plane through p, q, r (not collinear) have all of `a` on one closed side and all of `b`
+// on the other (exact predicates)? Then their interiors are apart: two parts on either side of a
+// face they share, the cheap test before interiors_overlap.
+// The outward facets of the convex hull of `points` (their corners are input points), and whether
+// one of them has all of `other` on its closed outer side (exact predicates): the hull test of
+// interiors_overlap, with each part's hull built once when a level tests many pairs.
+std::vector<std::array<Vec3, 3>> hull_facets(const std::vector<Vec3>& points);
+bool facet_separates(const std::vector<std::array<Vec3, 3>>& facets, const std::vector<Vec3>& other);
+// interiors_overlap without its box and hull filters (the exact boolean alone).
+bool interiors_overlap_exact(const TriangleShell& a, const TriangleShell& b);
+// Is every point of `a` that is not a point of `b` farther than `d` from every triangle of `b`?
+// (Floating point; for a margin of whole grid steps.)
+bool min_distance_beyond(const TriangleShell& a, const TriangleShell& b, double d);
+bool plane_separates(const Vec3& p, const Vec3& q, const Vec3& r, const std::vector<Vec3>& a,
+                     const std::vector<Vec3>& b);
 // The fallback common_volume uses when the boolean's result is not a 2-manifold: both shells
 // corefined, the faces bounding the common part picked and integrated (divergence theorem). When
 // the picked faces do not close up (near-coplanar contact; detected as a result that depends on

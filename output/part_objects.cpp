@@ -102,6 +102,7 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
   out.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.defect = std::move(checked.defect);
   out.repaired = checked.repaired;
+  out.triangles = std::move(checked.shell);
   out.split_faces = checked.split_faces + bent;
 
   out.faces = std::move(checked.faces);

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/polygon_mesh.hpp"
+#include "core/solid_validation.hpp"
 #include "core/working_frame.hpp"
 #include "io/cityjson_common.hpp"
 #include "output/solid_check.hpp"
@@ -68,6 +69,7 @@ struct EncodedSolid {
   nlohmann::json geometry;      // {"type":"Solid","lod":...,"boundaries":...,"semantics":...}
   Shell shell;                  // the boundaries as written
   std::vector<GridFace> faces;  // the same, with each face's neighbour and label
+  TriangleShell triangles;      // when valid: its triangles as val3dity builds them (overlap test)
   size_t dropped_faces = 0;     // faces that collapsed to nothing on the grid
   size_t split_faces = 0;       // faces written as several polygons to pass the checks
   bool repaired = false;        // the part needed a repair to pass the checks

@@ -476,12 +476,16 @@ void repair_faces(PartRepair& r, SolidCheck& c, const std::vector<Vec3>& pool) {
 PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>& pool, double step) {
   PartRepair r;
   r.faces = std::move(faces);
+  auto valid = [](PartRepair& x, SolidCheck& check) {
+    x.shell = std::move(check.shell);
+    return std::move(x);
+  };
   SolidCheck c;
   r.defect = grid_solid_defect(r.faces, pool, &c);
-  if (r.defect.empty()) return r;
+  if (r.defect.empty()) return valid(r, c);
   std::vector<GridFace> original = r.faces;
   repair_faces(r, c, pool);
-  if (r.defect.empty()) return r;
+  if (r.defect.empty()) return valid(r, c);
   // Repair 0, when the face repairs alone leave the part invalid: the shell closed on the grid
   // first (rings cleaned as val3dity merges their vertices, T-junctions filled), then the face
   // repairs again.
@@ -493,7 +497,7 @@ PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>
     SolidCheck cc;
     closed.defect = grid_solid_defect(closed.faces, pool, &cc);
     repair_faces(closed, cc, pool);
-    if (closed.defect.empty()) return closed;
+    if (closed.defect.empty()) return valid(closed, cc);
   }
   // Then faces whose ring comes within a grid step of itself, cut into their lobes (docs/
   // output-format.md §Repairs), and repairs 1 and 2 again.
@@ -504,7 +508,7 @@ PartRepair check_and_repair(std::vector<GridFace> faces, const std::vector<Vec3>
   SolidCheck nc;
   cut.defect = grid_solid_defect(cut.faces, pool, &nc);
   repair_faces(cut, nc, pool);
-  if (cut.defect.empty()) return cut;
+  if (cut.defect.empty()) return valid(cut, nc);
   return r;
 }
 

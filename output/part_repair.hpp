@@ -23,7 +23,8 @@ struct PartRepair {
   std::vector<GridFace> faces;  // the faces to write
   size_t split_faces = 0;       // input faces written as several polygons
   bool repaired = false;
-  std::string defect;  // empty = passes val3dity's rules at its default tolerances
+  std::string defect;   // empty = passes val3dity's rules at its default tolerances
+  TriangleShell shell;  // when valid: the faces' triangles as val3dity builds them (for 601)
 };
 
 // `pool` holds the coordinates of the ids in `faces`; `step` is the grid's step in the same units

@@ -1,7 +1,9 @@
 #include "pipeline/level_encoding.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
+#include <optional>
 
 #include "core/hull.hpp"
 #include "io/off_obj.hpp"
@@ -24,7 +26,7 @@ namespace {
 EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
                           const std::vector<PartResult>& parts, const Preprocessed& pre,
                           const std::string& lod, const std::string& version, VertexPool& pool,
-                          bool conforming, bool separate = false) {
+                          bool conforming, bool separate = false, bool plain = false) {
   EncodedLevel e;
   e.lv.index = i;
   e.lv.threshold = threshold;
@@ -71,8 +73,83 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
     for (size_t k : changed) {
       write_solid(solids[k], meshes[k].semantic_labels, lod, version);
       solids[k].repaired = true;  // counted with the repaired parts
+      SolidCheck check;
+      grid_solid_defect(solids[k].faces, pool.vertices(), &check);
+      solids[k].triangles = std::move(check.shell);
     }
   }
+  // No two parts may overlap on the grid (val3dity's 601, exact): rounding can push a vertex of a
+  // part a fraction of a step into its neighbour, and the non-conforming encoding lets a
+  // neighbour's corner stand inside a part. The smaller part of such a pair fails the level, so the
+  // repairs after it (clustering, then merging it into its neighbour) run as for any defect.
+  const auto t_overlap = std::chrono::steady_clock::now();
+  const std::vector<Vec3>& grid = pool.vertices();
+  // Two parts of the conforming encoding share their common faces vertex for vertex (written as the
+  // same triangles when bent, output/part_repair.hpp), so their interiors are apart when the plane
+  // of a shared face has every other vertex of one part on one side and of the other on the other
+  // side; the shared faces' own vertices, a fraction of a step off that plane after rounding, are
+  // on both parts' surfaces and left out.
+  auto shared_face_separates = [&](size_t j, size_t k) {
+    if (!conforming) return false;
+    std::vector<int64_t> shared;
+    const GridFace* face = nullptr;
+    for (const GridFace& f : solids[j].faces)
+      if (f.neighbour == static_cast<int>(k) && !f.rings.empty()) {
+        for (const auto& ring : f.rings) shared.insert(shared.end(), ring.begin(), ring.end());
+        if (!face || f.rings[0].size() > face->rings[0].size()) face = &f;
+      }
+    if (!face || face->rings[0].size() < 3) return false;
+    std::sort(shared.begin(), shared.end());
+    auto others = [&](size_t part) {
+      std::vector<Vec3> pts;
+      for (const GridFace& f : solids[part].faces)
+        for (const auto& ring : f.rings)
+          for (int64_t id : ring)
+            if (!std::binary_search(shared.begin(), shared.end(), id))
+              pts.push_back(grid[static_cast<size_t>(id)]);
+      return pts;
+    };
+    const auto& ring = face->rings[0];
+    const size_t n = ring.size();
+    return plane_separates(grid[static_cast<size_t>(ring[0])], grid[static_cast<size_t>(ring[n / 3])],
+                           grid[static_cast<size_t>(ring[(2 * n) / 3])], others(j), others(k));
+  };
+  std::vector<BBox> boxes(solids.size());
+  for (size_t j = 0; j < solids.size(); ++j)
+    for (const Vec3& v : solids[j].triangles.points) boxes[j].add(v);
+  std::vector<std::optional<std::vector<std::array<Vec3, 3>>>> hulls(solids.size());  // built once
+  auto hull_of = [&](size_t j) -> const std::vector<std::array<Vec3, 3>>& {
+    if (!hulls[j]) hulls[j] = hull_facets(solids[j].triangles.points);
+    return *hulls[j];
+  };
+  // On the first, plain encoding every vertex is its exact position rounded (at most half a step
+  // away) and the parts were apart before: two parts can only overlap where a vertex of one, not on
+  // the other, comes within a step of the other's surface. Repaired parts are tested in full.
+  const double near = 2 * std::max(pool.step(), val3dity_tolerances().snap);
+  auto apart = [&](size_t j, size_t k) {
+    if (!plain || solids[j].repaired || solids[k].repaired) return false;
+    return min_distance_beyond(solids[j].triangles, solids[k].triangles, near) &&
+           min_distance_beyond(solids[k].triangles, solids[j].triangles, near);
+  };
+  auto overlap = [&](size_t j, size_t k) {
+    for (int axis = 0; axis < 3; ++axis)
+      if (boxes[j].hi[axis] <= boxes[k].lo[axis] || boxes[k].hi[axis] <= boxes[j].lo[axis]) return false;
+    if (shared_face_separates(j, k) || apart(j, k)) return false;
+    if (facet_separates(hull_of(j), solids[k].triangles.points) ||
+        facet_separates(hull_of(k), solids[j].triangles.points))
+      return false;
+    return interiors_overlap_exact(solids[j].triangles, solids[k].triangles);
+  };
+  for (size_t j = 0; j < solids.size() && e.defect.empty(); ++j)
+    for (size_t k = j + 1; k < solids.size(); ++k)
+      if (overlap(j, k)) {
+        e.defect = "parts " + std::to_string(j) + " and " + std::to_string(k) +
+                   " overlap on the output grid (601 BUILDINGPARTS_OVERLAP)";
+        e.failed_part = static_cast<int>(parts[k].volume < parts[j].volume ? k : j);
+        break;
+      }
+  e.check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_overlap).count();
+  if (!e.defect.empty()) return e;
   for (size_t j = 0; j < parts.size(); ++j) {
     const PartResult& part = parts[j];
     PolygonMesh& mesh = meshes[j];
@@ -150,7 +227,7 @@ EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double 
                                   const std::vector<PartResult>& parts, const Preprocessed& pre,
                                   const std::string& lod, const std::string& version, VertexPool& pool) {
   const size_t mark = pool.mark();
-  EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
+  EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true, false, true);
   if (e.defect.empty()) return e;
   double spent = e.check_seconds;  // every attempt's checks count
   const std::string first = e.defect;
