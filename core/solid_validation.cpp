@@ -645,150 +645,141 @@ int polygon_rings_rule(const std::vector<CGAL::Polygon_2<K>>& rings) {
 }
 
 // The checks, on vertices already merged (`id`: each input vertex's merged index into `pts`).
-SolidCheck check_merged(const PolygonMesh& solid, const std::vector<uint32_t>& id, std::vector<Vec3> pts,
-                        const SolidTolerances& tol, bool measures) {
-  SolidCheck out;
-  ErrorLog log;
-  out.shell.points = std::move(pts);
-  const std::vector<Vec3>& p3 = out.shell.points;
-  for (const auto& p : p3) out.box.add(p);
-
-  // Rings (1xx), as val3dity reads them: merged ids; fewer than 3 points (101), else a vertex
-  // repeated consecutively (102; CityJSON rings are not closed explicitly, so a first vertex
-  // repeated at the end counts).
-  std::vector<std::vector<std::vector<uint32_t>>> faces;
-  std::vector<size_t> face_index;  // input face of each entry of `faces`
-  std::vector<Vec3> normals;
-  // With val3dity's face rules: each face's triangles as val3dity makes them (empty: ours).
-  std::vector<std::vector<std::array<uint32_t, 3>>> val3dity_tris;
-  std::vector<std::array<uint32_t, 3>> face_tris;
-  for (size_t fi = 0; fi < solid.faces.size(); ++fi) {
-    std::vector<std::vector<uint32_t>> rings;
-    bool face_ok = true;
-    face_tris.clear();
-    for (size_t r = 0; r < solid.faces[fi].rings.size(); ++r) {
-      const auto& in = solid.faces[fi].rings[r];
-      const std::string where = "face " + std::to_string(fi) + ", ring " + std::to_string(r);
-      std::vector<uint32_t> ring;
-      for (uint32_t v : in) {
-        if (v >= id.size()) {
-          face_ok = false;
-          continue;
-        }
-        ring.push_back(id[v]);
-      }
-      if (ring.size() < 3) {
-        log.add(solid_code::kTooFewPoints, where + " has " + std::to_string(ring.size()) + " points");
-        out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
+// Rings (1xx), as val3dity reads them: merged ids; fewer than 3 points (101), else a vertex
+// repeated consecutively (102; CityJSON rings are not closed explicitly, so a first vertex
+// repeated at the end counts). False when the face is gone.
+bool merged_rings(const PolygonMesh& solid, size_t fi, const std::vector<uint32_t>& id, ErrorLog& log,
+                  SolidCheck& out, std::vector<std::vector<uint32_t>>& rings) {
+  bool face_ok = true;
+  for (size_t r = 0; r < solid.faces[fi].rings.size(); ++r) {
+    const auto& in = solid.faces[fi].rings[r];
+    const std::string where = "face " + std::to_string(fi) + ", ring " + std::to_string(r);
+    std::vector<uint32_t> ring;
+    for (uint32_t v : in) {
+      if (v >= id.size()) {
         face_ok = false;
         continue;
       }
-      bool repeats = false;
-      for (size_t i = 0; i < ring.size(); ++i) repeats = repeats || ring[i] == ring[(i + 1) % ring.size()];
-      if (repeats) {
-        log.add(solid_code::kConsecutivePointsSame, where + " repeats a vertex consecutively");
-        out.bad_faces.emplace_back(fi, solid_code::kConsecutivePointsSame);
-        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-        while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
-      }
-      if (ring.size() < 3) {
-        // Only the repeat is val3dity's error; the ring is gone all the same.
-        out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
-        face_ok = false;
-        continue;
-      }
-      rings.push_back(std::move(ring));
+      ring.push_back(id[v]);
     }
-    if (!face_ok || rings.empty()) continue;
-    // Polygon (2xx): planarity against the least-squares plane of all its points.
-    std::vector<Vec3> fp;
-    for (const auto& ring : rings)
-      for (uint32_t v : ring) fp.push_back(p3[v]);
-    Vec3 c;
-    for (const auto& p : fp) c += p;
-    c = c / static_cast<double>(fp.size());
-    std::vector<Vec3> centred;
-    for (const auto& p : fp) centred.push_back(p - c);  // fit in local coordinates (precision)
-    const Plane pl = fit_plane(centred);
-    double worst = 0;
-    for (const auto& p : centred) worst = std::max(worst, std::abs(pl.signed_distance(p)));
-    const bool planar = worst <= tol.planarity || fp.size() == 3;
-    const std::string where = "face " + std::to_string(fi);
-    const std::string off_plane = where + ": a point lies " + fmt(worst) +
-                                  " m from the face's plane (tolerance " + fmt(tol.planarity) + " m)";
-    if (tol.normals_deg > 0) {
-      // val3dity's polygon rules, in coordinates local to the face (city coordinates are large).
-      const Vec3 o = p3[rings[0][0]];
-      std::vector<K::Point_3> local(p3.size());
-      for (const auto& ring : rings)
-        for (uint32_t v : ring) local[v] = K::Point_3(p3[v].x - o.x, p3[v].y - o.y, p3[v].z - o.z);
-      if (rings.size() == 1 && rings[0].size() == 3 &&
-          CGAL::collinear(local[rings[0][0]], local[rings[0][1]], local[rings[0][2]])) {
-        log.add(solid_code::kRingSelfIntersection, where + ": a triangle collapsed to a line");
-        out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
-        continue;
-      }
-      // val3dity tests the distance to the plane first and says no more about a face beyond it.
-      const std::vector<CGAL::Polygon_2<K>> projected = projected_rings(rings, local);
-      if (!rings_simple(projected)) {
-        if (planar) {
-          log.add(solid_code::kRingSelfIntersection,
-                  where + ": a ring touches or crosses itself, or has no area, in the face's plane");
-        } else {
-          log.add(solid_code::kNonPlanarPolygon, off_plane);
-        }
-        out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
-        continue;
-      }
-      if (planar && rings.size() > 1) {
-        if (const int code = polygon_rings_rule(projected)) {
-          const char* what = code == solid_code::kIntersectionRings
-                                 ? "its rings cross or run along each other"
-                             : code == solid_code::kInnerRingOutside ? "a hole lies outside the outer ring"
-                             : code == solid_code::kInnerRingsNested ? "a hole lies inside another hole"
-                                                                     : "its holes cut the face in two";
-          log.add(code, where + ": " + what + " in the face's plane");
-          out.bad_faces.emplace_back(fi, code);
-          if (code == solid_code::kIntersectionRings) continue;
-        }
-      }
-      if (!val3dity_triangles(rings, local, face_tris)) face_tris.clear();
-      const double dev = face_tris.empty() ? -1 : triangle_normals_deviation_deg(face_tris, local);
-      if (dev > tol.normals_deg) {
-        log.add(solid_code::kNonPlanarNormals, where + ": its triangles' normals differ by " + fmt(dev) +
-                                                   " degrees (tolerance " + fmt(tol.normals_deg) + ")");
-        out.bad_faces.emplace_back(fi, solid_code::kNonPlanarNormals);
-      }
-    }
-    const Vec3 n = newell(rings[0], p3);
-    if (norm(n) <= 1e-12) {
-      // No area: a bow-tie (its halves cancel) or a collapsed ring.
-      bool crosses = false;
-      for (const auto& ring : rings) {
-        CDT cdt;
-        try {
-          insert_ring(cdt, ring, p3, frame_for(p3[ring[0]], pl.n));
-        } catch (const CDT::Intersection_of_constraints_exception&) { crosses = true; }
-      }
-      if (crosses) log.add(solid_code::kRingSelfIntersection, where + ": a ring crosses itself");
-      else log.add(solid_code::kRingCollapsed, where + ": the outer ring has no area");
-      out.bad_faces.emplace_back(fi,
-                                 crosses ? solid_code::kRingSelfIntersection : solid_code::kRingCollapsed);
+    if (ring.size() < 3) {
+      log.add(solid_code::kTooFewPoints, where + " has " + std::to_string(ring.size()) + " points");
+      out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
+      face_ok = false;
       continue;
     }
-    if (!planar) {
-      out.bad_faces.emplace_back(fi, solid_code::kNonPlanarPolygon);
-      log.add(solid_code::kNonPlanarPolygon, off_plane);
+    bool repeats = false;
+    for (size_t i = 0; i < ring.size(); ++i) repeats = repeats || ring[i] == ring[(i + 1) % ring.size()];
+    if (repeats) {
+      log.add(solid_code::kConsecutivePointsSame, where + " repeats a vertex consecutively");
+      out.bad_faces.emplace_back(fi, solid_code::kConsecutivePointsSame);
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
     }
-    out.area += norm(n) / 2;
-    faces.push_back(std::move(rings));
-    face_index.push_back(fi);
-    normals.push_back(n);
-    val3dity_tris.push_back(face_tris);
+    if (ring.size() < 3) {
+      // Only the repeat is val3dity's error; the ring is gone all the same.
+      out.bad_faces.emplace_back(fi, solid_code::kTooFewPoints);
+      face_ok = false;
+      continue;
+    }
+    rings.push_back(std::move(ring));
   }
-  for (size_t fi = 0; fi < faces.size(); ++fi)
-    for (size_t r = 1; r < faces[fi].size(); ++r) out.area -= norm(newell(faces[fi][r], p3)) / 2;
+  return face_ok && !rings.empty();
+}
 
+// Polygon rules (2xx) of one face's merged rings, val3dity's triangles of it (`face_tris`, empty:
+// ours) and its Newell vector `n`. False when the face cannot go into the shell.
+bool face_rules(size_t fi, const std::vector<std::vector<uint32_t>>& rings, const std::vector<Vec3>& p3,
+                const SolidTolerances& tol, ErrorLog& log, SolidCheck& out,
+                std::vector<std::array<uint32_t, 3>>& face_tris, Vec3& n_out) {
+  // Polygon (2xx): planarity against the least-squares plane of all its points.
+  std::vector<Vec3> fp;
+  for (const auto& ring : rings)
+    for (uint32_t v : ring) fp.push_back(p3[v]);
+  Vec3 c;
+  for (const auto& p : fp) c += p;
+  c = c / static_cast<double>(fp.size());
+  std::vector<Vec3> centred;
+  for (const auto& p : fp) centred.push_back(p - c);  // fit in local coordinates (precision)
+  const Plane pl = fit_plane(centred);
+  double worst = 0;
+  for (const auto& p : centred) worst = std::max(worst, std::abs(pl.signed_distance(p)));
+  const bool planar = worst <= tol.planarity || fp.size() == 3;
+  const std::string where = "face " + std::to_string(fi);
+  const std::string off_plane = where + ": a point lies " + fmt(worst) +
+                                " m from the face's plane (tolerance " + fmt(tol.planarity) + " m)";
+  if (tol.normals_deg > 0) {
+    // val3dity's polygon rules, in coordinates local to the face (city coordinates are large).
+    const Vec3 o = p3[rings[0][0]];
+    std::vector<K::Point_3> local(p3.size());
+    for (const auto& ring : rings)
+      for (uint32_t v : ring) local[v] = K::Point_3(p3[v].x - o.x, p3[v].y - o.y, p3[v].z - o.z);
+    if (rings.size() == 1 && rings[0].size() == 3 &&
+        CGAL::collinear(local[rings[0][0]], local[rings[0][1]], local[rings[0][2]])) {
+      log.add(solid_code::kRingSelfIntersection, where + ": a triangle collapsed to a line");
+      out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
+      return false;
+    }
+    // val3dity tests the distance to the plane first and says no more about a face beyond it.
+    const std::vector<CGAL::Polygon_2<K>> projected = projected_rings(rings, local);
+    if (!rings_simple(projected)) {
+      if (planar) {
+        log.add(solid_code::kRingSelfIntersection,
+                where + ": a ring touches or crosses itself, or has no area, in the face's plane");
+      } else {
+        log.add(solid_code::kNonPlanarPolygon, off_plane);
+      }
+      out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
+      return false;
+    }
+    if (planar && rings.size() > 1) {
+      if (const int code = polygon_rings_rule(projected)) {
+        const char* what = code == solid_code::kIntersectionRings  ? "its rings cross or run along each other"
+                           : code == solid_code::kInnerRingOutside ? "a hole lies outside the outer ring"
+                           : code == solid_code::kInnerRingsNested ? "a hole lies inside another hole"
+                                                                   : "its holes cut the face in two";
+        log.add(code, where + ": " + what + " in the face's plane");
+        out.bad_faces.emplace_back(fi, code);
+        if (code == solid_code::kIntersectionRings) return false;
+      }
+    }
+    if (!val3dity_triangles(rings, local, face_tris)) face_tris.clear();
+    const double dev = face_tris.empty() ? -1 : triangle_normals_deviation_deg(face_tris, local);
+    if (dev > tol.normals_deg) {
+      log.add(solid_code::kNonPlanarNormals, where + ": its triangles' normals differ by " + fmt(dev) +
+                                                 " degrees (tolerance " + fmt(tol.normals_deg) + ")");
+      out.bad_faces.emplace_back(fi, solid_code::kNonPlanarNormals);
+    }
+  }
+  const Vec3 n = newell(rings[0], p3);
+  if (norm(n) <= 1e-12) {
+    // No area: a bow-tie (its halves cancel) or a collapsed ring.
+    bool crosses = false;
+    for (const auto& ring : rings) {
+      CDT cdt;
+      try {
+        insert_ring(cdt, ring, p3, frame_for(p3[ring[0]], pl.n));
+      } catch (const CDT::Intersection_of_constraints_exception&) { crosses = true; }
+    }
+    if (crosses) log.add(solid_code::kRingSelfIntersection, where + ": a ring crosses itself");
+    else log.add(solid_code::kRingCollapsed, where + ": the outer ring has no area");
+    out.bad_faces.emplace_back(fi, crosses ? solid_code::kRingSelfIntersection : solid_code::kRingCollapsed);
+    return false;
+  }
+  if (!planar) {
+    out.bad_faces.emplace_back(fi, solid_code::kNonPlanarPolygon);
+    log.add(solid_code::kNonPlanarPolygon, off_plane);
+  }
+  n_out = n;
+  return true;
+}
+
+// The faces' triangles as val3dity builds them into a shell (3xx topology).
+void build_shell(const std::vector<std::vector<std::vector<uint32_t>>>& faces,
+                 const std::vector<size_t>& face_index, const std::vector<Vec3>& normals,
+                 const std::vector<std::vector<std::array<uint32_t, 3>>>& val3dity_tris, ErrorLog& log,
+                 SolidCheck& out) {
+  const std::vector<Vec3>& p3 = out.shell.points;
   // Shell (3xx): the faces' triangles as val3dity builds them into a shell, then volume and
   // intersections.
   if (faces.size() < 4)
@@ -805,19 +796,12 @@ SolidCheck check_merged(const PolygonMesh& solid, const std::vector<uint32_t>& i
     tri_face.resize(out.shell.triangles.size(), face_index[fi]);
   }
   if (faces.size() >= 4) check_shell_topology(p3, out.shell.triangles, tri_face, log);
+}
 
-  // Non-planarity within reason does not stop the shell checks (the faces are triangulated).
-  const bool topology_ok = log.only({solid_code::kNonPlanarPolygon, solid_code::kNonPlanarNormals});
-  // Hull and convexity are measures, wanted whatever the validity.
-  if (measures) {
-    const Hull hull = convex_hull(p3);
-    out.hull_volume = hull.volume;
-    out.hull_facets = hull.facets;
-  }
-  if (!topology_ok) {
-    out.errors = log.take();
-    return out;
-  }
+// A topologically closed shell: its volume, convexity, self-intersections (306) and
+// orientation (405).
+void shell_geometry(ErrorLog& log, SolidCheck& out) {
+  const std::vector<Vec3>& p3 = out.shell.points;
   const Vec3 o = out.box.center();
   double six_v = 0;
   for (const auto& t : out.shell.triangles) six_v += dot(p3[t[0]] - o, cross(p3[t[1]] - o, p3[t[2]] - o));
@@ -852,6 +836,47 @@ SolidCheck check_merged(const PolygonMesh& solid, const std::vector<uint32_t>& i
             "the faces point inwards (signed volume " + fmt(out.volume) + " m³)");
   out.closed_manifold =
       !log.has(solid_code::kShellSelfIntersection) && !log.has(solid_code::kWrongOrientationShell);
+}
+
+SolidCheck check_merged(const PolygonMesh& solid, const std::vector<uint32_t>& id, std::vector<Vec3> pts,
+                        const SolidTolerances& tol, bool measures) {
+  SolidCheck out;
+  ErrorLog log;
+  out.shell.points = std::move(pts);
+  const std::vector<Vec3>& p3 = out.shell.points;
+  for (const auto& p : p3) out.box.add(p);
+
+  std::vector<std::vector<std::vector<uint32_t>>> faces;
+  std::vector<size_t> face_index;  // input face of each entry of `faces`
+  std::vector<Vec3> normals;
+  // With val3dity's face rules: each face's triangles as val3dity makes them (empty: ours).
+  std::vector<std::vector<std::array<uint32_t, 3>>> val3dity_tris;
+  std::vector<std::array<uint32_t, 3>> face_tris;
+  for (size_t fi = 0; fi < solid.faces.size(); ++fi) {
+    std::vector<std::vector<uint32_t>> rings;
+    face_tris.clear();
+    if (!merged_rings(solid, fi, id, log, out, rings)) continue;
+    Vec3 n;
+    if (!face_rules(fi, rings, p3, tol, log, out, face_tris, n)) continue;
+    out.area += norm(n) / 2;
+    faces.push_back(std::move(rings));
+    face_index.push_back(fi);
+    normals.push_back(n);
+    val3dity_tris.push_back(face_tris);
+  }
+  for (size_t fi = 0; fi < faces.size(); ++fi)
+    for (size_t r = 1; r < faces[fi].size(); ++r) out.area -= norm(newell(faces[fi][r], p3)) / 2;
+  build_shell(faces, face_index, normals, val3dity_tris, log, out);
+
+  // Non-planarity within reason does not stop the shell checks (the faces are triangulated).
+  const bool topology_ok = log.only({solid_code::kNonPlanarPolygon, solid_code::kNonPlanarNormals});
+  // Hull and convexity are measures, wanted whatever the validity.
+  if (measures) {
+    const Hull hull = convex_hull(p3);
+    out.hull_volume = hull.volume;
+    out.hull_facets = hull.facets;
+  }
+  if (topology_ok) shell_geometry(log, out);
   out.errors = log.take();
   return out;
 }
