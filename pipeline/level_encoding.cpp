@@ -23,66 +23,15 @@ std::string part_id(const std::string& building, size_t level, size_t index) {
 
 namespace {
 
-EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
-                          const std::vector<PartResult>& parts, const Preprocessed& pre,
-                          const std::string& lod, const std::string& version, VertexPool& pool,
-                          bool conforming, bool separate = false, bool plain = false) {
-  EncodedLevel e;
-  e.lv.index = i;
-  e.lv.threshold = threshold;
-  e.lv.parts = parts.size();
-  if (parts.empty()) {
-    e.defect = "no parts";
-    return e;
-  }
-  double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
-  std::vector<PolygonMesh> meshes;
-  if (conforming) meshes = level_part_meshes(pre, parts);
-  else
-    for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
-  if (separate) separate_near_touches(meshes, pool.step());
-  std::vector<EncodedSolid> solids;
-  for (size_t j = 0; j < parts.size(); ++j) {
-    solids.push_back(encode_solid(meshes[j], lod, version, pool));
-    e.check_seconds += solids.back().check_seconds;
-    if (!solids.back().defect.empty()) {
-      e.defect =
-          "part " + std::to_string(j) + " is invalid on the output grid (" + solids.back().defect + ")";
-      e.failed_part = static_cast<int>(j);
-      // For a developer: the part that failed, before rounding (docs/reliability.md).
-      if (const char* dir = std::getenv("MC_DUMP_GRID_DEFECTS"))
-        mc::io::write_off(std::string(dir) + "/" + building + "-L" + std::to_string(i) + "-p" +
-                              std::to_string(j) + (conforming ? "" : "-own") + ".off",
-                          meshes[j]);
-      return e;
-    }
-  }
-  // A part repaired on its own may have changed a face it shares: both copies made the same again
-  // (repairs are rare: nothing to do, and nothing copied, without one).
-  const bool any_repaired =
-      std::any_of(solids.begin(), solids.end(), [](const EncodedSolid& s) { return s.repaired; });
-  if (conforming && any_repaired) {
-    std::vector<std::vector<GridFace>> faces;
-    std::vector<bool> repaired;
-    for (EncodedSolid& solid : solids) {
-      faces.push_back(std::move(solid.faces));
-      repaired.push_back(solid.repaired);
-    }
-    const std::vector<size_t> changed = align_shared_faces(faces, repaired, pool.vertices());
-    for (size_t k = 0; k < solids.size(); ++k) solids[k].faces = std::move(faces[k]);
-    for (size_t k : changed) {
-      write_solid(solids[k], meshes[k].semantic_labels, lod, version);
-      solids[k].repaired = true;  // counted with the repaired parts
-      SolidCheck check;
-      grid_solid_defect(solids[k].faces, pool.vertices(), &check);
-      solids[k].triangles = std::move(check.shell);
-    }
-  }
-  // No two parts may overlap on the grid (val3dity's 601, exact): rounding can push a vertex of a
-  // part a fraction of a step into its neighbour, and the non-conforming encoding lets a
-  // neighbour's corner stand inside a part. The smaller part of such a pair fails the level, so the
-  // repairs after it (clustering, then merging it into its neighbour) run as for any defect.
-  const auto t_overlap = std::chrono::steady_clock::now();
+// The first pair of parts whose interiors overlap on the grid, as val3dity tests them (601, exact),
+// with the smaller part of the pair; {"", -1} when none (docs/output-format.md, "Checked, not
+// assumed"). Rounding can push a vertex of a part a fraction of a step into its neighbour, and the
+// non-conforming encoding lets a neighbour's corner stand inside a part; the smaller part then
+// fails the level, so the repairs after it (clustering, then merging it into its neighbour) run as
+// for any defect.
+std::pair<std::string, int> first_overlap(const std::vector<EncodedSolid>& solids,
+                                          const std::vector<PartResult>& parts, const VertexPool& pool,
+                                          bool conforming, bool plain) {
   const std::vector<Vec3>& grid = pool.vertices();
   // Two parts of the conforming encoding share their common faces vertex for vertex (written as the
   // same triangles when bent, output/part_repair.hpp), so their interiors are apart when the plane
@@ -140,14 +89,72 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
       return false;
     return interiors_overlap_exact(solids[j].triangles, solids[k].triangles);
   };
-  for (size_t j = 0; j < solids.size() && e.defect.empty(); ++j)
+  for (size_t j = 0; j < solids.size(); ++j)
     for (size_t k = j + 1; k < solids.size(); ++k)
-      if (overlap(j, k)) {
-        e.defect = "parts " + std::to_string(j) + " and " + std::to_string(k) +
-                   " overlap on the output grid (601 BUILDINGPARTS_OVERLAP)";
-        e.failed_part = static_cast<int>(parts[k].volume < parts[j].volume ? k : j);
-        break;
-      }
+      if (overlap(j, k))
+        return {"parts " + std::to_string(j) + " and " + std::to_string(k) +
+                    " overlap on the output grid (601 BUILDINGPARTS_OVERLAP)",
+                static_cast<int>(parts[k].volume < parts[j].volume ? k : j)};
+  return {"", -1};
+}
+
+EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
+                          const std::vector<PartResult>& parts, const Preprocessed& pre,
+                          const std::string& lod, const std::string& version, VertexPool& pool,
+                          bool conforming, bool separate = false, bool plain = false) {
+  EncodedLevel e;
+  e.lv.index = i;
+  e.lv.threshold = threshold;
+  e.lv.parts = parts.size();
+  if (parts.empty()) {
+    e.defect = "no parts";
+    return e;
+  }
+  double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
+  std::vector<PolygonMesh> meshes;
+  if (conforming) meshes = level_part_meshes(pre, parts);
+  else
+    for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
+  if (separate) separate_near_touches(meshes, pool.step());
+  std::vector<EncodedSolid> solids;
+  for (size_t j = 0; j < parts.size(); ++j) {
+    solids.push_back(encode_solid(meshes[j], lod, version, pool));
+    e.check_seconds += solids.back().check_seconds;
+    if (!solids.back().defect.empty()) {
+      e.defect =
+          "part " + std::to_string(j) + " is invalid on the output grid (" + solids.back().defect + ")";
+      e.failed_part = static_cast<int>(j);
+      // For a developer: the part that failed, before rounding (docs/reliability.md).
+      if (const char* dir = std::getenv("MC_DUMP_GRID_DEFECTS"))
+        mc::io::write_off(std::string(dir) + "/" + building + "-L" + std::to_string(i) + "-p" +
+                              std::to_string(j) + (conforming ? "" : "-own") + ".off",
+                          meshes[j]);
+      return e;
+    }
+  }
+  // A part repaired on its own may have changed a face it shares: both copies made the same again
+  // (repairs are rare: nothing to do, and nothing copied, without one).
+  const bool any_repaired =
+      std::any_of(solids.begin(), solids.end(), [](const EncodedSolid& s) { return s.repaired; });
+  if (conforming && any_repaired) {
+    std::vector<std::vector<GridFace>> faces;
+    std::vector<bool> repaired;
+    for (EncodedSolid& solid : solids) {
+      faces.push_back(std::move(solid.faces));
+      repaired.push_back(solid.repaired);
+    }
+    const std::vector<size_t> changed = align_shared_faces(faces, repaired, pool.vertices());
+    for (size_t k = 0; k < solids.size(); ++k) solids[k].faces = std::move(faces[k]);
+    for (size_t k : changed) {
+      write_solid(solids[k], meshes[k].semantic_labels, lod, version);
+      solids[k].repaired = true;  // counted with the repaired parts
+      SolidCheck check;
+      grid_solid_defect(solids[k].faces, pool.vertices(), &check);
+      solids[k].triangles = std::move(check.shell);
+    }
+  }
+  const auto t_overlap = std::chrono::steady_clock::now();
+  std::tie(e.defect, e.failed_part) = first_overlap(solids, parts, pool, conforming, plain);
   e.check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_overlap).count();
   if (!e.defect.empty()) return e;
   for (size_t j = 0; j < parts.size(); ++j) {
