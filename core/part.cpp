@@ -322,18 +322,15 @@ double exit_distance(const std::vector<Plane>& hull, const Vec3& s, const Vec3& 
 
 }  // namespace
 
-PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
-                          const PlaneResolver& resolve) {
-  const CellComplex& cx = *s.cx;
-  const PlaneRegistry& reg = cx.planes();
-  const DecomposeParams& dec = *ctx.dec;
-  PartAnalysis info;
-  info.bits = std::move(bits);
-  info.hash = hash_bits(info.bits);
+namespace {
 
-  // Volume, boundary incidences and hull points.
-  std::vector<std::pair<uint64_t, Incidence>> edge_uses;  // (edge key, use) in boundary order
-  std::vector<uint64_t> vertex_planes;  // (vertex << 32 | plane) of every boundary facet corner
+// The part's boundary facets (docs/algorithm.md §9.2): its volume and cell count, every boundary
+// edge use (edge key, incidence) in boundary order and every boundary facet corner
+// (vertex << 32 | plane). Returns the number of boundary facets.
+uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
+                       std::vector<std::pair<uint64_t, Incidence>>& edge_uses,
+                       std::vector<uint64_t>& vertex_planes) {
+  const CellComplex& cx = *s.cx;
   uint32_t faces = 0;
   for (uint32_t i = 0; i < s.cells.size(); ++i) {
     if (!test_bit(info.bits, i)) continue;
@@ -351,14 +348,19 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
       ++faces;
     }
   }
-  // Hull points: the boundary vertices where three or more planes meet. A vertex whose boundary
-  // facets lie on one plane is inside a flat face, and one on two planes is inside their common
-  // edge line; neither is an extreme point, so the hull is the same without them
-  // (docs/algorithm.md §9.2), and the hull is most of the analysis' time.
+  return faces;
+}
+
+// Hull points: the boundary vertices where three or more planes meet. A vertex whose boundary
+// facets lie on one plane is inside a flat face, and one on two planes is inside their common
+// edge line; neither is an extreme point, so the hull is the same without them
+// (docs/algorithm.md §9.2), and the hull is most of the analysis' time. `vertices` counts the
+// boundary vertices.
+std::vector<Vec3> hull_points(const CellComplex& cx, std::vector<uint64_t>& vertex_planes, size_t& vertices) {
   std::sort(vertex_planes.begin(), vertex_planes.end());
   vertex_planes.erase(std::unique(vertex_planes.begin(), vertex_planes.end()), vertex_planes.end());
   std::vector<Vec3> pts;
-  size_t vertices = 0;
+  vertices = 0;
   for (size_t i = 0; i < vertex_planes.size();) {
     size_t j = i;
     while (j < vertex_planes.size() && (vertex_planes[j] >> 32) == (vertex_planes[i] >> 32)) ++j;
@@ -366,14 +368,14 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
     ++vertices;
     i = j;
   }
-  const std::shared_ptr<const Hull> hull_ptr =
-      ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
-  const Hull& hull = *hull_ptr;
-  info.hull_volume = hull.volume;
-  info.delta = std::max(0.0, info.hull_volume - info.volume);
-  if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;
+  return pts;
+}
 
-  // Dihedral edges between boundary faces on different planes (2-manifold edges only).
+// Dihedral edges between boundary faces on different planes (2-manifold edges only); pinch edges
+// and pinch vertices counted into info.pinch_edges.
+std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
+                                         std::vector<std::pair<uint64_t, Incidence>>& edge_uses,
+                                         size_t vertices, uint32_t faces, PartAnalysis& info) {
   std::vector<DihedralEdge> edges;
   // The uses of each edge, edges in key order (deterministic), uses in boundary order.
   std::stable_sort(edge_uses.begin(), edge_uses.end(),
@@ -409,10 +411,13 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   if (!euler_says_no_pinch(by_edge, vertices, faces))
     info.pinch_edges +=
         static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
-  std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
-  merge_lines(raw, reg, ctx.dist);
+  return edges;
+}
 
-  // Reflex lines above the concavity threshold, weighted by length × depth into the hull.
+// Reflex lines above the concavity threshold, weighted by length x depth into the hull.
+void weigh_lines(std::vector<RawLine>& raw, const Hull& hull, const AnalysisContext& ctx,
+                 PartAnalysis& info) {
+  const DecomposeParams& dec = *ctx.dec;
   const double min_angle = dec.concave_thresh * M_PI + 1e-6;
   const double floor = 1e-6 * ctx.a_diag;
   for (RawLine& r : raw) {
@@ -430,21 +435,12 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
     L.weight = L.length() * (dec.significance_max ? dmax : dsum / (n + 1));
     if (L.weight >= floor) info.lines.push_back(L);
   }
-  std::stable_sort(info.lines.begin(), info.lines.end(),
-                   [](const ConcaveLine& a, const ConcaveLine& b) { return a.weight > b.weight; });
-  info.e_all = static_cast<int>(info.lines.size());
-  const double sig = ctx.level * ctx.a_diag;
-  for (const auto& L : info.lines) info.e_sig += L.weight >= sig;
-  if (info.delta > 0 && info.volume >= dec.cvx_thresh * info.hull_volume) {
-    // Convex enough (cvx_thresh): what is left are dents a planner would not cut at.
-    info.nearly_convex = true;
-    info.lines.clear();
-    info.e_all = info.e_sig = 0;
-    info.delta = 0;
-    return info;
-  }
+}
 
-  // Candidate planes of the significant lines (docs/algorithm.md §10).
+// Candidate planes of the significant lines (docs/algorithm.md §10).
+void candidate_planes(const AnalysisContext& ctx, const PlaneResolver& resolve, const PlaneRegistry& reg,
+                      double sig, PartAnalysis& info) {
+  const DecomposeParams& dec = *ctx.dec;
   std::vector<std::pair<uint32_t, double>> cands;  // plane id, accumulated weight
   auto add = [&](uint32_t id, double w) {
     for (auto& c : cands)
@@ -510,6 +506,49 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
     if (keep) info.candidates.push_back(id);
     if (dec.max_candidates > 0 && static_cast<int>(info.candidates.size()) >= dec.max_candidates) break;
   }
+}
+
+}  // namespace
+
+PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& ctx,
+                          const PlaneResolver& resolve) {
+  const CellComplex& cx = *s.cx;
+  const PlaneRegistry& reg = cx.planes();
+  const DecomposeParams& dec = *ctx.dec;
+  PartAnalysis info;
+  info.bits = std::move(bits);
+  info.hash = hash_bits(info.bits);
+
+  std::vector<std::pair<uint64_t, Incidence>> edge_uses;  // (edge key, use) in boundary order
+  std::vector<uint64_t> vertex_planes;  // (vertex << 32 | plane) of every boundary facet corner
+  const uint32_t faces = part_boundary(s, info, edge_uses, vertex_planes);
+  size_t vertices = 0;
+  const std::vector<Vec3> pts = hull_points(cx, vertex_planes, vertices);
+  const std::shared_ptr<const Hull> hull_ptr =
+      ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
+  const Hull& hull = *hull_ptr;
+  info.hull_volume = hull.volume;
+  info.delta = std::max(0.0, info.hull_volume - info.volume);
+  if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;
+
+  const std::vector<DihedralEdge> edges = dihedral_edges(cx, edge_uses, vertices, faces, info);
+  std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
+  merge_lines(raw, reg, ctx.dist);
+  weigh_lines(raw, hull, ctx, info);
+  std::stable_sort(info.lines.begin(), info.lines.end(),
+                   [](const ConcaveLine& a, const ConcaveLine& b) { return a.weight > b.weight; });
+  info.e_all = static_cast<int>(info.lines.size());
+  const double sig = ctx.level * ctx.a_diag;
+  for (const auto& L : info.lines) info.e_sig += L.weight >= sig;
+  if (info.delta > 0 && info.volume >= dec.cvx_thresh * info.hull_volume) {
+    // Convex enough (cvx_thresh): what is left are dents a planner would not cut at.
+    info.nearly_convex = true;
+    info.lines.clear();
+    info.e_all = info.e_sig = 0;
+    info.delta = 0;
+    return info;
+  }
+  candidate_planes(ctx, resolve, reg, sig, info);
   return info;
 }
 
