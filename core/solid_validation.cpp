@@ -1013,24 +1013,7 @@ namespace {
 // Is every point of `b` on or beyond the plane of a facet of `a`'s convex hull? Exact predicates
 // on the hull's own vertices: then the interiors cannot meet.
 bool hull_facet_separates(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  std::vector<K::Point_3> pa, pb;
-  for (const Vec3& p : a) pa.emplace_back(p.x, p.y, p.z);
-  for (const Vec3& p : b) pb.emplace_back(p.x, p.y, p.z);
-  Mesh hull;
-  CGAL::convex_hull_3(pa.begin(), pa.end(), hull);
-  if (hull.number_of_faces() == 0) return false;  // flat: no facet to test
-  for (auto f : hull.faces()) {
-    std::array<K::Point_3, 3> t;
-    int i = 0;
-    for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull))
-      if (i < 3) t[i++] = hull.point(v);
-    // Outward facets: the hull lies on the negative side of each.
-    if (std::all_of(pb.begin(), pb.end(), [&](const K::Point_3& q) {
-          return CGAL::orientation(t[0], t[1], t[2], q) != CGAL::NEGATIVE;
-        }))
-      return true;
-  }
-  return false;
+  return facet_separates(hull_facets(a), b);
 }
 
 }  // namespace

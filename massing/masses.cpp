@@ -165,7 +165,7 @@ void measure_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, dou
 // The masses' contacts: the parts' contacts across masses, by kind; the kind with the largest area.
 void mass_contacts(LevelMassing& L) {
   const auto& P = L.parts;
-  std::map<std::pair<int, int>, std::map<std::string, std::pair<double, double>>> acc;
+  std::map<std::pair<int, int>, KindAreas> acc;
   for (uint32_t i = 0; i < P.size(); ++i)
     for (const Contact& c : P[i].contacts) {
       if (P[c.other].mass == P[i].mass) continue;
@@ -173,20 +173,9 @@ void mass_contacts(LevelMassing& L) {
       slot.first += c.area;
       slot.second += c.above * c.area;
     }
-  for (const auto& [key, kinds] : acc) {
-    Contact c;
-    c.other = static_cast<uint32_t>(key.second);
-    double best = -1;
-    for (const auto& [kind, v] : kinds) {
-      c.area += v.first;
-      if (v.first > best) best = v.first, c.kind = kind;
-    }
-    if (c.kind != "side") {
-      const double up = kinds.at(c.kind).second;
-      c.above = up > 0 ? 1 : up < 0 ? -1 : 0;
-    }
-    L.masses[static_cast<size_t>(key.first)].contacts.push_back(std::move(c));
-  }
+  for (const auto& [key, kinds] : acc)
+    L.masses[static_cast<size_t>(key.first)].contacts.push_back(
+        contact_from(static_cast<uint32_t>(key.second), kinds));
 }
 
 }  // namespace

@@ -126,6 +126,21 @@ const char* position(int above) { return above > 0 ? "above" : above < 0 ? "belo
 
 }  // namespace
 
+Contact contact_from(uint32_t other, const KindAreas& kinds) {
+  Contact c;
+  c.other = other;
+  double best = -1;
+  for (const auto& [kind, v] : kinds) {
+    c.area += v.first;
+    if (v.first > best) best = v.first, c.kind = kind;
+  }
+  if (c.kind != "side") {
+    const double up = kinds.at(c.kind).second;
+    c.above = up > 0 ? 1 : up < 0 ? -1 : 0;
+  }
+  return c;
+}
+
 LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::vector<PartResult>& parts,
                            size_t index, double threshold, const MassingParams& p) {
   LevelMassing L;
@@ -157,41 +172,23 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
     pm.width = extent.width;
     pm.length = extent.length;
     // Contacts: shared faces by neighbour and kind.
-    std::map<uint32_t, std::map<std::string, std::pair<double, double>>>
-        acc;                    // other -> kind -> (area, signed up-area)
-    double own = 0, walls = 0;  // the part's own faces' area, and its walls'
-    double flat_up = 0;         // horizontal upward faces' area
+    std::map<uint32_t, KindAreas> acc;  // other -> kind -> (area, signed area with this part above)
+    double own = 0, walls = 0;          // the part's own faces' area, and its walls'
+    double flat_up = 0;                 // horizontal upward faces' area
     for (const Polygon& f : m.faces) {
-      {
-        const auto [a, nrm] = face_area(m, f);
-        if (nrm.z >= stacked_cos) flat_up += a;
-      }
+      const auto [area, nrm] = face_area(m, f);
+      if (nrm.z >= stacked_cos) flat_up += area;
       if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j) {
-        const auto [a, nrm] = face_area(m, f);
-        own += a;
-        if (std::abs(nrm.z) <= side_sin) walls += a;
+        own += area;
+        if (std::abs(nrm.z) <= side_sin) walls += area;
         continue;
       }
-      const auto [area, nrm] = face_area(m, f);
       if (!(area > 0)) continue;
       auto& slot = acc[static_cast<uint32_t>(f.neighbour)][kind_name(nrm.z, stacked_cos, side_sin)];
       slot.first += area;
-      slot.second += nrm.z > 0 ? area : -area;  // outward normal up: the other part lies above
+      slot.second += nrm.z > 0 ? -area : area;  // outward normal up: the other part lies above
     }
-    for (const auto& [other, kinds] : acc) {
-      Contact c;
-      c.other = other;
-      double best = -1;
-      for (const auto& [kind, v] : kinds) {
-        c.area += v.first;
-        if (v.first > best) best = v.first, c.kind = kind;
-      }
-      if (c.kind != "side") {
-        const double up = kinds.at(c.kind).second;
-        c.above = up > 0 ? -1 : up < 0 ? 1 : 0;
-      }
-      pm.contacts.push_back(std::move(c));
-    }
+    for (const auto& [other, kinds] : acc) pm.contacts.push_back(contact_from(other, kinds));
     pm.wall_share = own > 0 ? walls / own : 0.0;
     pm.flat_top = pm.footprint_area > 0 ? std::min(1.0, flat_up / pm.footprint_area) : 0.0;
   }
@@ -218,7 +215,7 @@ int tiers_of(const LevelMassing& L) {
   for (size_t i : order) {
     for (const Contact& c : L.masses[i].contacts)
       if (c.kind == "stacked" && c.above == 1 && L.masses[c.other].z_min < L.masses[i].z_min) {
-        const bool tier = L.masses[i].role != "roof" && L.masses[i].role != "rooftop";
+        const bool tier = L.masses[i].role != "rooftop";
         chain[i] = std::max(chain[i], chain[c.other] + (tier ? 1 : 0));
       }
     tiers = std::max(tiers, chain[i]);

@@ -4,6 +4,7 @@
 // Pure functions of a level's part meshes (input coordinates), so deterministic.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,12 @@ struct Contact {
   std::string kind;    // "stacked", "side" or "inclined" (the kind with the largest area)
   int above = 0;       // stacked/inclined: +1 this part lies above the other, -1 below; side: 0
 };
+
+// A contact's faces summed by kind: kind -> (area, area with this part above minus area below).
+using KindAreas = std::map<std::string, std::pair<double, double>>;
+// The contact with `other` from those sums: the kind with the largest area, the side of the
+// stacked or inclined contact by the sign of its signed area.
+Contact contact_from(uint32_t other, const KindAreas& kinds);
 
 struct PartMassing {
   double z_min = 0, z_max = 0;

@@ -58,14 +58,7 @@ void assign_roles(LevelMassing& L, const MassingParams& p) {
   for (size_t i = 0; i < n; ++i)
     if (M[i].grounded && M[i].role.empty())
       M[i].role = M[i].volume >= p.wing_min_share * reference ? "wing" : "annex";
-  // 5. roof: a mass of roof pieces only (their body was not found below them).
-  for (size_t i = 0; i < n; ++i) {
-    if (!M[i].role.empty()) continue;
-    const bool only_roof = std::all_of(M[i].parts.begin(), M[i].parts.end(),
-                                       [&](uint32_t k) { return L.parts[k].piece == "roof"; });
-    if (only_roof) M[i].role = "roof";
-  }
-  // 6./7. other raised masses: rooftop when small beside what carries them, else setback.
+  // 5./6. other raised masses: rooftop when small beside what carries them, else setback.
   for (size_t i = 0; i < n; ++i) {
     if (!M[i].role.empty()) continue;
     // Support: the mass it rests on with the largest shared area (stacked or inclined contact,

@@ -38,7 +38,7 @@ json building_report(const BuildingOutcome& b) {
     for (const auto& lm : b.massing.levels)  // part roles (massing/massing.hpp)
       if (lm.index == l.index) {
         json roles = json::object();
-        for (const char* r : {"main", "wing", "annex", "podium", "tower", "setback", "roof", "rooftop"}) {
+        for (const char* r : {"main", "wing", "annex", "podium", "tower", "setback", "rooftop"}) {
           int k = 0;
           for (const auto& mm : lm.masses) k += mm.role == r;
           if (k) roles[r] = k;
