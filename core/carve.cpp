@@ -85,6 +85,17 @@ double hair_gap(const CellComplex& cx, const CellVertices& c, const CarvePlane& 
   return gap;
 }
 
+// The planes of a live cell's facets, oriented outward: the cell is {x : n·x + d <= 0 for each}.
+std::vector<Plane> outward_planes(const CellComplex& cx, uint32_t c) {
+  std::vector<Plane> outward;
+  for (uint32_t f : cx.cell(c).facets) {
+    Plane pl = cx.planes()[cx.facet(f).plane];
+    if (dot(pl.n, cx.outward_normal(f, c)) < 0) pl = Plane{-pl.n, -pl.d};
+    outward.push_back(pl);
+  }
+  return outward;
+}
+
 // Uniform point in tetrahedron (a, b, c, d) from a point of the unit cube (Rocchini-Cignoni fold).
 Vec3 fold_to_tet(double s, double t, double u, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   if (s + t > 1) {
@@ -104,6 +115,129 @@ Vec3 fold_to_tet(double s, double t, double u, const Vec3& a, const Vec3& b, con
 }
 
 }  // namespace
+
+// The points are split by the midpoint of their box's longest side (docs/design.md "Regions, not
+// points"); each box tests only the triangles that touched its parent, so the tree is queried
+// once per cell.
+size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch, const SurfaceIndex& surface,
+                   std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
+                   const PointClassifier& classify, size_t& classified) {
+  struct Node {
+    uint32_t begin, end;  // range of `order`
+    uint32_t list;        // the parent's touching triangles, in `lists`
+  };
+  struct Leaf {
+    uint32_t begin, end;
+    bool uniform;  // untouched: `batch` representatives decide every point
+  };
+  std::vector<uint32_t> order(pts.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<std::vector<uint32_t>> lists{std::move(triangles)};
+  std::vector<Leaf> leaves;
+  std::vector<Node> stack{{0, static_cast<uint32_t>(pts.size()), 0}};
+  std::vector<uint32_t> narrowed;
+  while (!stack.empty()) {
+    const Node nd = stack.back();
+    stack.pop_back();
+    if (nd.end - nd.begin <= batch) {
+      leaves.push_back({nd.begin, nd.end, false});
+      continue;
+    }
+    BBox b;
+    b.lo = b.hi = pts[order[nd.begin]];
+    for (uint32_t k = nd.begin + 1; k < nd.end; ++k) {
+      const Vec3& v = pts[order[k]];
+      b.lo = {std::min(b.lo.x, v.x), std::min(b.lo.y, v.y), std::min(b.lo.z, v.z)};
+      b.hi = {std::max(b.hi.x, v.x), std::max(b.hi.y, v.y), std::max(b.hi.z, v.z)};
+    }
+    const bool straddles = oracle_box.valid() && oracle_box.overlaps(b) && !oracle_box.contains(b);
+    surface.touching(b, lists[nd.list], narrowed);
+    if (narrowed.empty() && !straddles) {
+      leaves.push_back({nd.begin, nd.end, true});
+      continue;
+    }
+    // Every triangle in the box within `slab` of one plane: the box's points beyond the slab on
+    // either side lie in a convex region the surface does not cross (uniform); those in the
+    // slab are classified one by one.
+    Plane pl;
+    if (!straddles && surface.common_plane(narrowed, slab, pl)) {
+      auto first = order.begin() + nd.begin, last = order.begin() + nd.end;
+      const auto below =
+          std::partition(first, last, [&](uint32_t i) { return pl.signed_distance(pts[i]) < -slab; });
+      const auto within =
+          std::partition(below, last, [&](uint32_t i) { return pl.signed_distance(pts[i]) <= slab; });
+      const uint32_t u = static_cast<uint32_t>(below - order.begin()),
+                     w = static_cast<uint32_t>(within - order.begin());
+      if (u > nd.begin) leaves.push_back({nd.begin, u, true});
+      if (w > u) leaves.push_back({u, w, false});
+      if (nd.end > w) leaves.push_back({w, nd.end, true});
+      continue;
+    }
+    const Vec3 ext = b.hi - b.lo;
+    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+    auto coord = [axis](const Vec3& v) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
+    const double mid = 0.5 * (coord(b.lo) + coord(b.hi));
+    const auto cut = std::partition(order.begin() + nd.begin, order.begin() + nd.end,
+                                    [&](uint32_t i) { return coord(pts[i]) < mid; });
+    const uint32_t c = static_cast<uint32_t>(cut - order.begin());
+    if (c == nd.begin || c == nd.end) {  // coincident points: no split separates them
+      leaves.push_back({nd.begin, nd.end, false});
+      continue;
+    }
+    const uint32_t list = static_cast<uint32_t>(lists.size());
+    lists.push_back(narrowed);
+    stack.push_back({c, nd.end, list});
+    stack.push_back({nd.begin, c, list});
+  }
+  // Round 1: the representatives of the untouched leaves. Representatives that disagree mark a
+  // region where the oracle itself is not constant (rays escaping through gaps of an open or
+  // non-manifold input): its other points are classified one by one in round 2, with the points
+  // of the touched leaves, as a full vote would.
+  auto ask = [&](const Leaf& l) { return l.uniform ? std::min<size_t>(batch, l.end - l.begin) : 0; };
+  std::vector<Vec3> q;
+  std::vector<uint64_t> ids;
+  for (const Leaf& l : leaves)
+    for (uint32_t k = l.begin; k < l.begin + ask(l); ++k) {
+      q.push_back(pts[order[k]]);
+      ids.push_back(first_id + order[k]);
+    }
+  std::vector<uint8_t> reps;
+  if (!q.empty()) classify(q, ids, reps);
+  classified += q.size();
+  std::vector<size_t> yes(leaves.size(), 0);
+  for (size_t li = 0, at = 0; li < leaves.size(); ++li) {
+    const size_t asked = ask(leaves[li]);
+    for (size_t k = 0; k < asked; ++k) yes[li] += reps[at + k] != 0;
+    at += asked;
+  }
+  // Round 2: every point of a touched leaf and the other points of a non-unanimous one.
+  q.clear();
+  ids.clear();
+  for (size_t li = 0; li < leaves.size(); ++li) {
+    const Leaf& l = leaves[li];
+    const size_t asked = ask(l);
+    if (l.uniform && (yes[li] == 0 || yes[li] == asked)) continue;
+    for (uint32_t k = l.begin + static_cast<uint32_t>(asked); k < l.end; ++k) {
+      q.push_back(pts[order[k]]);
+      ids.push_back(first_id + order[k]);
+    }
+  }
+  std::vector<uint8_t> rest;
+  if (!q.empty()) classify(q, ids, rest);
+  classified += q.size();
+  size_t in = 0;
+  for (size_t li = 0, r = 0; li < leaves.size(); ++li) {
+    const Leaf& l = leaves[li];
+    const size_t asked = ask(l), m = l.end - l.begin;
+    if (l.uniform && (yes[li] == 0 || yes[li] == asked)) {
+      in += yes[li] ? m : 0;
+      continue;
+    }
+    in += yes[li];
+    for (size_t k = asked; k < m; ++k) in += rest[r++] != 0;
+  }
+  return in;
+}
 
 std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, uint64_t seed) {
   struct Tet {
@@ -176,12 +310,7 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   // own count).
   auto grazed_vote = [&](uint32_t c, const BBox& box, const std::vector<Vec3>& pts, uint64_t first_id,
                          size_t& in, size_t& points) {
-    std::vector<Plane> outward;
-    for (uint32_t f : cx.cell(c).facets) {
-      Plane pl = cx.planes()[cx.facet(f).plane];
-      if (dot(pl.n, cx.outward_normal(f, c)) < 0) pl = Plane{-pl.n, -pl.d};
-      outward.push_back(pl);
-    }
+    const std::vector<Plane> outward = outward_planes(cx, c);
     if (p.surface_enters(outward, box)) return false;
     std::vector<Vec3> voted;
     std::vector<uint64_t> ids;
@@ -228,7 +357,11 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     size_t in = 0;
     const bool grazed =
         !free_cell && p.surface_enters && p.vote_batch > 0 && grazed_vote(c, box, pts, first_id, in, points);
-    if (!grazed) {
+    if (!grazed && !free_cell && p.regions && p.vote_batch > 0) {
+      in = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
+                       p.regions->entering(outward_planes(cx, c), box, hair), hair, p.oracle_box, classify,
+                       points);
+    } else if (!grazed) {
       std::vector<uint64_t> ids(pts.size());
       std::vector<uint8_t> flags;
       for (size_t i = 0; i < pts.size(); ++i) ids[i] = first_id + i;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/complex.hpp"
+#include "core/surface_index.hpp"
 
 namespace mc {
 
@@ -44,6 +45,11 @@ struct CarveParams {
   // decide the rest. Null = every touched cell gets the full vote.
   std::function<bool(const std::vector<Plane>& outward, const BBox&)> surface_enters;
   double band = 0;
+  // When set, touched cells are voted by regions (boxes of their points that no triangle of
+  // this index touches, and that do not straddle `oracle_box`, are decided by `vote_batch`
+  // points each) instead of point by point. Only for an oracle that is constant where the
+  // surface does not pass (the parity vote).
+  const SurfaceIndex* regions = nullptr;
   uint64_t seed = 1;
 };
 
@@ -61,6 +67,19 @@ struct CarveResult {
 
 CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const PointClassifier& classify,
                   const CarveParams& p, std::chrono::steady_clock::time_point deadline);
+
+// The vote by regions (docs/design.md "Regions, not points"): how many of a cell's sample points
+// `pts` (ids first_id + i) are inside. A box of points that no triangle of `triangles` (those
+// entering the cell) touches and that does not straddle `oracle_box` lies in one convex region
+// the surface does not cross: its first `batch` points are classified and, when they agree,
+// label all of its points. Where they disagree (the oracle is not constant there: rays escaping
+// through gaps of an open or non-manifold input) every point of the box is classified. When the
+// triangles in a box lie within `slab` of one plane, its points beyond the slab on either side
+// are two such regions. Points of the other boxes (at most `batch` each, near the surface) are
+// classified one by one. Adds the oracle's queries to `classified`.
+size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch, const SurfaceIndex& surface,
+                   std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
+                   const PointClassifier& classify, size_t& classified);
 
 // Sample points uniformly inside a live convex cell (deterministic for `seed`).
 std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, uint64_t seed);

@@ -101,6 +101,9 @@ Labelling CellLabeller::label(bool use_vertical, Clock::time_point deadline) con
   c.surface_touches = [&index, ob](const BBox& b) {
     return index.touches(b) || (ob.overlaps(b) && !ob.contains(b));
   };
+  // Parity is constant where the surface does not pass, so a touched cell is voted by regions.
+  // The vertical vote is not: under an eave without a wall it changes where no surface is.
+  if (!use_vertical && p_.region_votes) c.regions = &index;
   // A valid solid's cell that the surface reaches at most a hair into (fitting noise of the
   // faces along its facets) is uniform but for that band (docs/algorithm.md §7.3).
   if (out_.fast_path && !use_vertical && p_.grazed_cells) {

@@ -45,6 +45,10 @@ struct PreprocessParams {
   // With the fast path, a cell the surface only grazes is voted in a band along its facets
   // (docs/algorithm.md §7.3). Not a configuration key: tests compare with the full vote.
   bool grazed_cells = true;
+  // The parity vote labels the points of a cell the surface touches by regions: boxes of them
+  // that no triangle touches are decided by a few points each (docs/design.md "Regions, not
+  // points"). Not a configuration key: tests and benchmarks compare with the point-by-point vote.
+  bool region_votes = true;
   // Points the parity vote calls outside but that no ray (horizon to zenith) escapes from are
   // inside: storeys whose floors are modelled as sheets inside the solid (core/oracle.hpp).
   bool fill_enclosed = true;

@@ -294,8 +294,11 @@ TEST(Decompose, PartsAreCutAfterTheirNeighboursAreRefined) {
     ASSERT_EQ(r.dec.levels.size(), 4u);
     const LevelResult& fine = r.dec.levels.back();
     EXPECT_FALSE(r.dec.partial);
+    // Without the fix: 0.9926 and a worst part of 0.90. With it the worst part moves with the
+    // labelling's sample points (0.96 by the point-by-point vote with seed 1, 0.943 with seed 3
+    // or by regions), so the bound sits between.
     EXPECT_GE(fine.convexity, 0.995);
-    EXPECT_GE(fine.min_convexity, 0.95);
+    EXPECT_GE(fine.min_convexity, 0.93);
     expect_valid_levels(r, cell_volume(r));
     ++checked;
   }

@@ -75,3 +75,53 @@ TEST(SurfaceIndex, AnEmptySurfaceEntersNothing) {
 
 }  // namespace
 }  // namespace mc
+
+namespace mc {
+namespace {
+
+TEST(SurfaceIndex, NarrowingAListGivesWhatTheTreeGives) {
+  const SurfaceIndex index(cube(0.3));
+  BBox all;
+  all.add({-1, -1, -1});
+  all.add({2, 2, 2});
+  const std::vector<uint32_t> every = index.touching(all);
+  EXPECT_EQ(every.size(), 14u);
+  for (const auto& [lo, hi] : {std::pair<Vec3, Vec3>{{0.2, 0.2, 0.2}, {0.8, 0.8, 0.8}},  // inside: none
+                               {{0.9, 0.2, 0.2}, {1.1, 0.4, 0.4}},                       // one wall
+                               {{0.4, 0.4, 0.9}, {0.6, 0.6, 1.4}},                       // the apex
+                               {{-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1}}}) {                 // a corner
+    BBox b;
+    b.add(lo);
+    b.add(hi);
+    std::vector<uint32_t> narrowed;
+    index.touching(b, every, narrowed);
+    EXPECT_EQ(narrowed, index.touching(b));
+    EXPECT_EQ(!narrowed.empty(), index.touches(b));
+  }
+}
+
+TEST(SurfaceIndex, CommonPlaneOfOneFaceButNotOfACorner) {
+  const SurfaceIndex index(cube(0.3));
+  BBox wall;  // the x = 1 wall's two triangles and nothing else
+  wall.add({0.95, 0.3, 0.3});
+  wall.add({1.05, 0.7, 0.7});
+  Plane pl;
+  const std::vector<uint32_t> w = index.touching(wall);
+  ASSERT_EQ(w.size(), 2u);
+  ASSERT_TRUE(index.common_plane(w, 1e-9, pl));
+  EXPECT_NEAR(std::abs(pl.n.x), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(pl.signed_distance({1, 0.5, 0.5})), 0.0, 1e-12);
+  BBox corner;
+  corner.add({-0.1, -0.1, -0.1});
+  corner.add({0.1, 0.1, 0.1});
+  EXPECT_FALSE(index.common_plane(index.touching(corner), 1e-3, pl));
+  EXPECT_FALSE(index.common_plane({}, 1, pl));
+  // The bulged roof is within 0.3 of the top plane: one plane for a generous slab only.
+  BBox roof;
+  roof.add({0.2, 0.2, 1.05});
+  roof.add({0.8, 0.8, 1.35});
+  EXPECT_FALSE(index.common_plane(index.touching(roof), 0.01, pl));
+}
+
+}  // namespace
+}  // namespace mc

@@ -5,7 +5,7 @@ datasets/3dbag/3dbag_5910.city.json (the 3D BAG v21.09.08 tile 5910, CC BY 4.0 Â
 see datasets/README.md) with their BuildingParts and vertices renumbered, nothing else changed:
   NL.IMBAG.Pand.0503100000031316  12 parts at 0.01: main, setback, rooftop (two slabs on a base)
   NL.IMBAG.Pand.0503100000021433   6 parts: main, wing, setback, rooftop
-  NL.IMBAG.Pand.0503100000018410   4 parts: main, wing, annex
+  NL.IMBAG.Pand.0503100000018410   4 parts: main, rooftop (a dormer), annex
 then render-parts renders every building of the level-0.01 file (CityJSON, and the CityJSONSeq
 run's), with the input as a ghost, and checks each PNG: present, 1600 x 1200, not blank, and in
 its drawing panels (left of the legend and table) the legend colour of every role its parts have
@@ -27,7 +27,7 @@ import tempfile
 BUILDINGS = {
     "NL.IMBAG.Pand.0503100000031316": {"main", "setback", "rooftop"},
     "NL.IMBAG.Pand.0503100000021433": {"main", "wing", "setback", "rooftop"},
-    "NL.IMBAG.Pand.0503100000018410": {"main", "wing", "annex"},
+    "NL.IMBAG.Pand.0503100000018410": {"main", "rooftop", "annex"},
 }
 PRESENT_MIN = 150  # pixels of a role's exact colour (a label box alone is ~300 px in each panel)
 ABSENT_MAX = 20  # stray antialiased pixels that happen to match
