@@ -116,24 +116,40 @@ Vec3 fold_to_tet(double s, double t, double u, const Vec3& a, const Vec3& b, con
 
 }  // namespace
 
-// The points are split by the midpoint of their box's longest side (docs/design.md "Regions, not
-// points"); each box tests only the triangles that touched its parent, so the tree is queried
-// once per cell.
-size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch, const SurfaceIndex& surface,
-                   std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
-                   const PointClassifier& classify, size_t& classified) {
+namespace {
+
+// A range of a region vote's point order: untouched (`uniform`: `batch` representatives decide
+// every point when they agree) or near the surface (every point classified).
+struct RegionLeaf {
+  uint32_t begin, end;
+  bool uniform;
+};
+
+// The tight box of the points order[begin, end).
+BBox points_box(const std::vector<Vec3>& pts, const std::vector<uint32_t>& order, uint32_t begin,
+                uint32_t end) {
+  BBox b;
+  b.lo = b.hi = pts[order[begin]];
+  for (uint32_t k = begin + 1; k < end; ++k) {
+    const Vec3& v = pts[order[k]];
+    b.lo = {std::min(b.lo.x, v.x), std::min(b.lo.y, v.y), std::min(b.lo.z, v.z)};
+    b.hi = {std::max(b.hi.x, v.x), std::max(b.hi.y, v.y), std::max(b.hi.z, v.z)};
+  }
+  return b;
+}
+
+// Step 1: the regions. Permutes `order` so that every leaf is a range of it. The points are split
+// by the midpoint of their box's longest side; each box tests only the triangles that touched its
+// parent, so the tree is queried once per cell (docs/design.md "Regions, not points").
+std::vector<RegionLeaf> split_regions(const std::vector<Vec3>& pts, size_t batch, const SurfaceIndex& surface,
+                                      std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
+                                      std::vector<uint32_t>& order) {
   struct Node {
     uint32_t begin, end;  // range of `order`
     uint32_t list;        // the parent's touching triangles, in `lists`
   };
-  struct Leaf {
-    uint32_t begin, end;
-    bool uniform;  // untouched: `batch` representatives decide every point
-  };
-  std::vector<uint32_t> order(pts.size());
-  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
   std::vector<std::vector<uint32_t>> lists{std::move(triangles)};
-  std::vector<Leaf> leaves;
+  std::vector<RegionLeaf> leaves;
   std::vector<Node> stack{{0, static_cast<uint32_t>(pts.size()), 0}};
   std::vector<uint32_t> narrowed;
   while (!stack.empty()) {
@@ -143,13 +159,7 @@ size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch
       leaves.push_back({nd.begin, nd.end, false});
       continue;
     }
-    BBox b;
-    b.lo = b.hi = pts[order[nd.begin]];
-    for (uint32_t k = nd.begin + 1; k < nd.end; ++k) {
-      const Vec3& v = pts[order[k]];
-      b.lo = {std::min(b.lo.x, v.x), std::min(b.lo.y, v.y), std::min(b.lo.z, v.z)};
-      b.hi = {std::max(b.hi.x, v.x), std::max(b.hi.y, v.y), std::max(b.hi.z, v.z)};
-    }
+    const BBox b = points_box(pts, order, nd.begin, nd.end);
     const bool straddles = oracle_box.valid() && oracle_box.overlaps(b) && !oracle_box.contains(b);
     surface.touching(b, lists[nd.list], narrowed);
     if (narrowed.empty() && !straddles) {
@@ -189,18 +199,26 @@ size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch
     stack.push_back({c, nd.end, list});
     stack.push_back({nd.begin, c, list});
   }
-  // Round 1: the representatives of the untouched leaves. Representatives that disagree mark a
-  // region where the oracle itself is not constant (rays escaping through gaps of an open or
-  // non-manifold input): its other points are classified one by one in round 2, with the points
-  // of the touched leaves, as a full vote would.
-  auto ask = [&](const Leaf& l) { return l.uniform ? std::min<size_t>(batch, l.end - l.begin) : 0; };
+  return leaves;
+}
+
+// Step 2: how many points are inside. Round 1 classifies the representatives of the untouched
+// leaves. Representatives that disagree mark a region where the oracle itself is not constant
+// (rays escaping through gaps of an open or non-manifold input): its other points are classified
+// one by one in round 2, with the points of the touched leaves, as a full vote would.
+size_t count_by_regions(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch,
+                        const std::vector<RegionLeaf>& leaves, const std::vector<uint32_t>& order,
+                        const PointClassifier& classify, size_t& classified) {
+  auto ask = [&](const RegionLeaf& l) { return l.uniform ? std::min<size_t>(batch, l.end - l.begin) : 0; };
   std::vector<Vec3> q;
   std::vector<uint64_t> ids;
-  for (const Leaf& l : leaves)
-    for (uint32_t k = l.begin; k < l.begin + ask(l); ++k) {
+  auto add = [&](uint32_t from, uint32_t to) {
+    for (uint32_t k = from; k < to; ++k) {
       q.push_back(pts[order[k]]);
       ids.push_back(first_id + order[k]);
     }
+  };
+  for (const RegionLeaf& l : leaves) add(l.begin, l.begin + static_cast<uint32_t>(ask(l)));
   std::vector<uint8_t> reps;
   if (!q.empty()) classify(q, ids, reps);
   classified += q.size();
@@ -210,33 +228,39 @@ size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch
     for (size_t k = 0; k < asked; ++k) yes[li] += reps[at + k] != 0;
     at += asked;
   }
-  // Round 2: every point of a touched leaf and the other points of a non-unanimous one.
+  auto settled = [&](size_t li) {
+    return leaves[li].uniform && (yes[li] == 0 || yes[li] == ask(leaves[li]));
+  };
   q.clear();
   ids.clear();
-  for (size_t li = 0; li < leaves.size(); ++li) {
-    const Leaf& l = leaves[li];
-    const size_t asked = ask(l);
-    if (l.uniform && (yes[li] == 0 || yes[li] == asked)) continue;
-    for (uint32_t k = l.begin + static_cast<uint32_t>(asked); k < l.end; ++k) {
-      q.push_back(pts[order[k]]);
-      ids.push_back(first_id + order[k]);
-    }
-  }
+  for (size_t li = 0; li < leaves.size(); ++li)
+    if (!settled(li)) add(leaves[li].begin + static_cast<uint32_t>(ask(leaves[li])), leaves[li].end);
   std::vector<uint8_t> rest;
   if (!q.empty()) classify(q, ids, rest);
   classified += q.size();
   size_t in = 0;
   for (size_t li = 0, r = 0; li < leaves.size(); ++li) {
-    const Leaf& l = leaves[li];
-    const size_t asked = ask(l), m = l.end - l.begin;
-    if (l.uniform && (yes[li] == 0 || yes[li] == asked)) {
+    const size_t m = leaves[li].end - leaves[li].begin;
+    if (settled(li)) {
       in += yes[li] ? m : 0;
       continue;
     }
     in += yes[li];
-    for (size_t k = asked; k < m; ++k) in += rest[r++] != 0;
+    for (size_t k = ask(leaves[li]); k < m; ++k) in += rest[r++] != 0;
   }
   return in;
+}
+
+}  // namespace
+
+size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch, const SurfaceIndex& surface,
+                   std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
+                   const PointClassifier& classify, size_t& classified) {
+  if (pts.empty()) return 0;
+  std::vector<uint32_t> order(pts.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto leaves = split_regions(pts, batch, surface, std::move(triangles), slab, oracle_box, order);
+  return count_by_regions(pts, first_id, batch, leaves, order, classify, classified);
 }
 
 std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, uint64_t seed) {

@@ -25,7 +25,8 @@ std::vector<Vec3> random_points(size_t n, const Vec3& lo, const Vec3& hi, uint64
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<Vec3> pts(n);
-  for (Vec3& p : pts) p = {lo.x + u(rng) * (hi.x - lo.x), lo.y + u(rng) * (hi.y - lo.y), lo.z + u(rng) * (hi.z - lo.z)};
+  for (Vec3& p : pts)
+    p = {lo.x + u(rng) * (hi.x - lo.x), lo.y + u(rng) * (hi.y - lo.y), lo.z + u(rng) * (hi.z - lo.z)};
   return pts;
 }
 
@@ -82,7 +83,8 @@ TEST(RegionVote, ADisagreeingRegionHasEveryPointClassified) {
     queries += q.size();
   };
   size_t classified = 0;
-  const size_t in = region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{}, noisy, classified);
+  const size_t in =
+      region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{}, noisy, classified);
   // A region whose 9 points happen to agree is labelled whole (0.7 % of 9-point draws): close
   // to, not exactly, the point-by-point count.
   EXPECT_NEAR(double(in), double(truth), 0.02 * pts.size());
