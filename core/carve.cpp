@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <queue>
 #include <tuple>
 #include <unordered_set>
@@ -309,15 +310,140 @@ std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, u
   return pts;
 }
 
+namespace {
+
+// A cell's vote: its label and its inconsistent volume (the score that queues it).
+struct CellVote {
+  bool inside = false;
+  double score = 0;
+};
+
+// The carving's constants, derived once from its parameters and the root cell.
+struct CarveScale {
+  double unit;        // c³
+  double hair;        // δ/10 unless set
+  double box_volume;  // the root cell's
+  BBox outer;         // the root cell's box
+};
+
+// A valid solid's cell that the surface only grazes (CarveParams::surface_enters): the points in
+// the band along its facets are voted as in a full vote (same ids, so the same labels), and the
+// first `vote_batch` points beyond the band decide all of those by majority. False (nothing
+// counted) when the surface does enter the cell. Reentrant (the two children of a split are
+// voted at once).
+bool band_vote(const CellComplex& cx, uint32_t c, const BBox& box, const std::vector<Vec3>& pts,
+               uint64_t first_id, const CarveParams& p, const PointClassifier& classify, size_t& in,
+               size_t& points) {
+  const std::vector<Plane> outward = outward_planes(cx, c);
+  if (p.surface_enters(outward, box)) return false;
+  std::vector<Vec3> voted;
+  std::vector<uint64_t> ids;
+  std::vector<uint8_t> in_batch, flags;
+  size_t batch = 0, rest = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    double depth = std::numeric_limits<double>::infinity();
+    for (const Plane& pl : outward) depth = std::min(depth, -pl.signed_distance(pts[i]));
+    const bool in_band = depth <= p.band;
+    if (!in_band && batch == static_cast<size_t>(p.vote_batch)) {
+      ++rest;
+      continue;
+    }
+    batch += !in_band;
+    voted.push_back(pts[i]);
+    ids.push_back(first_id + i);
+    in_batch.push_back(!in_band);
+  }
+  classify(voted, ids, flags);
+  size_t batch_in = 0;
+  for (size_t k = 0; k < flags.size(); ++k) {
+    in += flags[k] != 0;
+    batch_in += in_batch[k] && flags[k];
+  }
+  if (2 * batch_in > batch) in += rest;
+  points += voted.size();
+  return true;
+}
+
+// Votes one cell (`box`: its vertices' box). A cell the input surface does not touch is entirely
+// inside or outside: a few points (majority) decide it. A cell it only grazes is voted in a band
+// along its facets; any other is voted by regions (parity) or point by point. Reentrant for
+// distinct cells whose volume and centroid are measured (CellComplex caches them lazily).
+CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const CarveParams& p,
+                   const CarveScale& k, const PointClassifier& classify, size_t& points) {
+  const double v = cx.cell_volume(c);
+  const long n = std::clamp<long>(static_cast<long>(std::ceil(v / k.unit)), p.min_points, p.max_points);
+  const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
+  const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
+  const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(box);
+  const auto pts = sample_cell(
+      cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
+  size_t in = 0;
+  const bool grazed = !free_cell && p.surface_enters && p.vote_batch > 0 &&
+                      band_vote(cx, c, box, pts, first_id, p, classify, in, points);
+  if (!grazed && !free_cell && p.regions && p.vote_batch > 0) {
+    in = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
+                     p.regions->entering(outward_planes(cx, c), box, k.hair), k.hair, p.oracle_box, classify,
+                     points);
+  } else if (!grazed) {
+    std::vector<uint64_t> ids(pts.size());
+    std::vector<uint8_t> flags;
+    for (size_t i = 0; i < pts.size(); ++i) ids[i] = first_id + i;
+    classify(pts, ids, flags);
+    for (uint8_t f : flags) in += f != 0;
+    points += pts.size();
+    if (free_cell) in = 2 * in > pts.size() ? pts.size() : 0;  // unanimous by construction
+  }
+  const double r = pts.empty() ? 0.0 : double(in) / pts.size();
+  CellVote out;
+  out.inside = r > p.inside_vote;
+  out.score = out.inside ? v * (1 - r) : v * r;
+  // An inside cell reaching more than δ out of the oracle's box has air in it for sure (beyond
+  // the box everything is outside), however few of its points fell there (a sliver hanging out
+  // of an open bottom): it stays in the queue for the open-bottom cap plane.
+  if (out.inside && p.oracle_box.valid() && !p.oracle_box.contains(box, p.dist))
+    out.score = std::max(out.score, 2 * p.inconsistency * k.unit);
+  return out;
+}
+
+// The plane that cuts a queued cell: the largest remaining region plane that really crosses it.
+// Planes passed over only because of a hair-close vertex move to `deferred` (they stay for the
+// sub-cells). Returns the index into `remaining`, or nothing.
+std::optional<size_t> choose_plane(const CellComplex& cx, uint32_t c, double score,
+                                   const std::vector<uint32_t>& remaining,
+                                   const std::vector<CarvePlane>& planes, const CarveParams& p,
+                                   const CarveScale& k, std::vector<uint32_t>& deferred) {
+  const CellVertices cv(cx, c);
+  for (size_t i = 0; i < remaining.size(); ++i) {
+    const Crossing x = crosses(cx, cv, planes[remaining[i]], p.dist, k.hair, k.outer);
+    if (x == Crossing::Yes) return i;
+    if (x == Crossing::Hair) deferred.push_back(remaining[i]);
+  }
+  // Only hair-blocked planes are left, yet the cell is inconsistent (it was queued). The hair
+  // rule guards the output grid; a plane whose hair-close vertices all keep at least `min_gap`
+  // from it cannot make vertices that collapse there, so it still cuts a cell of which at least
+  // kHairCutShare is mislabelled (otherwise such a cell can keep metres of air). Only badly
+  // mislabelled cells: cutting every such cell makes parts less convex, and gaps below min_gap
+  // (fitting noise) break parts when quantised (docs/algorithm.md §7.4, docs/design.md "Valid
+  // solids at every step").
+  if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) return std::nullopt;
+  auto it = std::find_if(deferred.begin(), deferred.end(), [&](uint32_t q) {
+    return hair_gap(cx, cv, planes[q], k.hair, k.outer) >= p.min_gap;
+  });
+  if (it == deferred.end()) return std::nullopt;
+  const size_t i =
+      static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
+  deferred.erase(it);
+  return i;
+}
+
+}  // namespace
+
 CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const PointClassifier& classify,
                   const CarveParams& p, std::chrono::steady_clock::time_point deadline) {
   CarveResult res;
-  const double unit = p.cell_size * p.cell_size * p.cell_size;
-  const double hair = p.hair >= 0 ? p.hair : 0.1 * p.dist;
-  const double box_volume = cx.cell_volume(cx.root_cell());
-  const BBox outer = cx.cell_bbox(cx.root_cell());
+  const CarveScale k{p.cell_size * p.cell_size * p.cell_size, p.hair >= 0 ? p.hair : 0.1 * p.dist,
+                     cx.cell_volume(cx.root_cell()), cx.cell_bbox(cx.root_cell())};
   std::vector<uint8_t> inside_label(cx.num_cells() + 1024, 0);
-
   struct Entry {
     double score;
     uint32_t cell;
@@ -325,88 +451,9 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   };
   std::priority_queue<Entry> queue;
   std::vector<std::vector<uint32_t>> todo(cx.num_cells());  // remaining plane indices per cell
-
-  // A valid solid's cell that the surface only grazes (CarveParams::surface_enters): the points
-  // in the band along its facets are voted as in a full vote (same ids, so the same labels), and
-  // the first `vote_batch` points beyond the band decide all of those by majority. False (nothing
-  // counted) when the surface does enter the cell.
-  // Reentrant: the two children of a split are voted at once (their own buffers, `points` their
-  // own count).
-  auto grazed_vote = [&](uint32_t c, const BBox& box, const std::vector<Vec3>& pts, uint64_t first_id,
-                         size_t& in, size_t& points) {
-    const std::vector<Plane> outward = outward_planes(cx, c);
-    if (p.surface_enters(outward, box)) return false;
-    std::vector<Vec3> voted;
-    std::vector<uint64_t> ids;
-    std::vector<uint8_t> in_batch, flags;
-    size_t batch = 0, rest = 0;
-    for (size_t i = 0; i < pts.size(); ++i) {
-      double depth = std::numeric_limits<double>::infinity();
-      for (const Plane& pl : outward) depth = std::min(depth, -pl.signed_distance(pts[i]));
-      const bool in_band = depth <= p.band;
-      if (!in_band && batch == static_cast<size_t>(p.vote_batch)) {
-        ++rest;
-        continue;
-      }
-      batch += !in_band;
-      voted.push_back(pts[i]);
-      ids.push_back(first_id + i);
-      in_batch.push_back(!in_band);
-    }
-    classify(voted, ids, flags);
-    size_t batch_in = 0;
-    for (size_t k = 0; k < flags.size(); ++k) {
-      in += flags[k] != 0;
-      batch_in += in_batch[k] && flags[k];
-    }
-    if (2 * batch_in > batch) in += rest;
-    points += voted.size();
-    return true;
-  };
-
-  // Votes one cell (`box`: its vertices' box); returns its inconsistent volume. Reentrant for
-  // distinct cells whose volume and centroid are measured (CellComplex caches them lazily) and
-  // whose label slot exists.
-  auto vote = [&](uint32_t c, const BBox& box, size_t& points) {
-    const double v = cx.cell_volume(c);
-    const long n = std::clamp<long>(static_cast<long>(std::ceil(v / unit)), p.min_points, p.max_points);
-    // A cell the input surface does not touch is entirely inside or outside: a few points
-    // (majority) decide it. A cell it only grazes is voted in a band along its facets. Every
-    // other cell gets the full vote.
-    const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
-    const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
-    const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(box);
-    const auto pts = sample_cell(
-        cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
-    size_t in = 0;
-    const bool grazed =
-        !free_cell && p.surface_enters && p.vote_batch > 0 && grazed_vote(c, box, pts, first_id, in, points);
-    if (!grazed && !free_cell && p.regions && p.vote_batch > 0) {
-      in = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
-                       p.regions->entering(outward_planes(cx, c), box, hair), hair, p.oracle_box, classify,
-                       points);
-    } else if (!grazed) {
-      std::vector<uint64_t> ids(pts.size());
-      std::vector<uint8_t> flags;
-      for (size_t i = 0; i < pts.size(); ++i) ids[i] = first_id + i;
-      classify(pts, ids, flags);
-      for (uint8_t f : flags) in += f != 0;
-      points += pts.size();
-      if (free_cell) in = 2 * in > pts.size() ? pts.size() : 0;  // unanimous by construction
-    }
-    const double r = pts.empty() ? 0.0 : double(in) / pts.size();
-    inside_label[c] = r > p.inside_vote;
-    double score = inside_label[c] ? v * (1 - r) : v * r;
-    // An inside cell reaching more than δ out of the oracle's box has air in it for sure (beyond
-    // the box everything is outside), however few of its points fell there (a sliver hanging
-    // out of an open bottom): it stays in the queue for the open-bottom cap plane.
-    if (inside_label[c] && p.oracle_box.valid() && !p.oracle_box.contains(box, p.dist))
-      score = std::max(score, 2 * p.inconsistency * unit);
-    return score;
-  };
   auto enqueue = [&](uint32_t c, double score, std::vector<uint32_t> remaining) {
-    const bool big_outside = !inside_label[c] && cx.cell_volume(c) > 0.05 * box_volume;
-    if (remaining.empty() || !(score > p.inconsistency * unit || big_outside)) return;
+    const bool big_outside = !inside_label[c] && cx.cell_volume(c) > 0.05 * k.box_volume;
+    if (remaining.empty() || !(score > p.inconsistency * k.unit || big_outside)) return;
     if (todo.size() <= c) todo.resize(c + 1024);
     todo[c] = std::move(remaining);
     queue.push({score, c});
@@ -415,7 +462,9 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   std::vector<uint32_t> all(planes.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   const uint32_t root = cx.root_cell();
-  enqueue(root, vote(root, outer, res.points), all);
+  const CellVote root_vote = vote_cell(cx, root, k.outer, p, k, classify, res.points);
+  inside_label[root] = root_vote.inside;
+  enqueue(root, root_vote.score, all);
 
   while (!queue.empty()) {
     if (std::chrono::steady_clock::now() > deadline || cx.num_cells() > p.max_cells) {
@@ -426,35 +475,11 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     const double score = queue.top().score;
     queue.pop();
     std::vector<uint32_t> remaining = std::move(todo[c]);
-    // The largest remaining region plane that really crosses the cell. Planes passed over only
-    // because of a hair-close vertex stay for the sub-cells.
-    size_t i = 0;
     std::vector<uint32_t> deferred;
-    const CellVertices cv(cx, c);
-    for (; i < remaining.size(); ++i) {
-      const Crossing x = crosses(cx, cv, planes[remaining[i]], p.dist, hair, outer);
-      if (x == Crossing::Yes) break;
-      if (x == Crossing::Hair) deferred.push_back(remaining[i]);
-    }
-    if (i == remaining.size()) {
-      // Only hair-blocked planes are left, yet the cell is inconsistent (it was queued). The
-      // hair rule guards the output grid; a plane whose hair-close vertices all keep at least
-      // `min_gap` from it cannot make vertices that collapse there, so it still cuts a cell of
-      // which at least kHairCutShare is mislabelled (otherwise such a cell can keep metres of air).
-      // Only badly mislabelled cells: cutting every such cell makes parts less convex, and gaps
-      // below min_gap (fitting noise) break parts when quantised (docs/algorithm.md §7.4,
-      // docs/design.md "Valid solids at every step").
-      if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) continue;
-      auto it = std::find_if(deferred.begin(), deferred.end(), [&](uint32_t q) {
-        return hair_gap(cx, cv, planes[q], hair, outer) >= p.min_gap;
-      });
-      if (it == deferred.end()) continue;
-      i = static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
-      deferred.erase(it);
-    }
-    const uint32_t plane_index = remaining[i];
-    auto split = cx.split(c, planes[plane_index].plane);
-    remaining.erase(remaining.begin(), remaining.begin() + static_cast<long>(i) + 1);
+    const std::optional<size_t> i = choose_plane(cx, c, score, remaining, planes, p, k, deferred);
+    if (!i) continue;
+    auto split = cx.split(c, planes[remaining[*i]].plane);
+    remaining.erase(remaining.begin(), remaining.begin() + static_cast<long>(*i) + 1);
     remaining.insert(remaining.begin(), deferred.begin(), deferred.end());
     if (!split) {  // cannot happen after `crosses`, but never loop on it
       enqueue(c, 1e300, remaining);
@@ -466,21 +491,25 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
     const uint32_t child[2] = {split->neg, split->pos};
     std::vector<uint32_t> kept[2];
     BBox box[2];
-    for (int k = 0; k < 2; ++k) {
-      const CellVertices cv_child(cx, child[k]);
+    for (int j = 0; j < 2; ++j) {
+      const CellVertices cv_child(cx, child[j]);
       for (uint32_t q : remaining)
-        if (crosses(cx, cv_child, planes[q], p.dist, hair, outer) != Crossing::No) kept[k].push_back(q);
-      box[k] = cv_child.box;
-      cx.cell_volume(child[k]);  // measured (and cached) before the votes read it
+        if (crosses(cx, cv_child, planes[q], p.dist, k.hair, k.outer) != Crossing::No) kept[j].push_back(q);
+      box[j] = cv_child.box;
+      cx.cell_volume(child[j]);  // measured (and cached) before the votes read it
     }
+    CellVote votes[2];
+    size_t points[2] = {0, 0};
+    tbb::parallel_invoke(
+        with_thread_tag([&] { votes[0] = vote_cell(cx, child[0], box[0], p, k, classify, points[0]); }),
+        with_thread_tag([&] { votes[1] = vote_cell(cx, child[1], box[1], p, k, classify, points[1]); }));
+    res.points += points[0] + points[1];
     if (inside_label.size() <= std::max(child[0], child[1]))
       inside_label.resize(std::max(child[0], child[1]) + 1024, 0);
-    double scores[2];
-    size_t points[2] = {0, 0};
-    tbb::parallel_invoke(with_thread_tag([&] { scores[0] = vote(child[0], box[0], points[0]); }),
-                         with_thread_tag([&] { scores[1] = vote(child[1], box[1], points[1]); }));
-    res.points += points[0] + points[1];
-    for (int k = 0; k < 2; ++k) enqueue(child[k], scores[k], std::move(kept[k]));
+    for (int j = 0; j < 2; ++j) {
+      inside_label[child[j]] = votes[j].inside;
+      enqueue(child[j], votes[j].score, std::move(kept[j]));
+    }
   }
   for (uint32_t c : cx.live_cells()) {
     ++res.cells;
