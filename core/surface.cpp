@@ -76,13 +76,16 @@ std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> boundary_edge_use
   return uses;
 }
 
-Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells,
-                        const std::vector<uint32_t>* solid, const LevelSurfaceContext& level) {
-  Surface s;
-  // 1. Directed boundary edges grouped by (plane, outward side, cut, neighbouring part); opposite
-  //    pairs cancel, which merges coplanar facets into polygons (the complex is conforming, so
-  //    edges match exactly).
-  std::map<std::tuple<uint32_t, bool, bool, uint32_t>, std::unordered_map<uint64_t, int>> groups;
+namespace {
+
+using EdgeGroups = std::map<std::tuple<uint32_t, bool, bool, uint32_t>, std::unordered_map<uint64_t, int>>;
+
+// Step 1: directed boundary edges grouped by (plane, outward side, cut, neighbouring part); opposite
+// pairs cancel, which merges coplanar facets into polygons (the complex is conforming, so
+// edges match exactly).
+EdgeGroups group_boundary_edges(const CellComplex& cx, const std::vector<uint32_t>& cells,
+                                const std::vector<uint32_t>* solid, const LevelSurfaceContext& level) {
+  EdgeGroups groups;
   for (auto [f, c] : boundary_facets(cx, cells)) {
     const bool plus = cx.facet(f).back == c;
     const uint32_t other = cx.other_side(f, c);
@@ -103,17 +106,24 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
       }
     }
   }
-  // 2. Chain each group's edges into loops. Where the polygon touches itself at a vertex (two
-  //    outgoing edges), the walk takes the sharpest left turn, so that every loop keeps the face
-  //    on its left without crossing itself and the loops meet there corner to corner (any other
-  //    pairing makes a ring that joins two separate fans of faces: not a 2-manifold vertex).
-  //    Deterministic: walks start at the smallest vertex with a single outgoing edge if any.
-  struct RawFace {
-    uint32_t plane;
-    bool plus, cut;
-    uint32_t neighbour;
-    std::vector<std::vector<uint32_t>> loops;
-  };
+  return groups;
+}
+
+// A merged polygon of one plane, side, cut flag and neighbour: its loops before the straight
+// vertices are dropped.
+struct RawFace {
+  uint32_t plane;
+  bool plus, cut;
+  uint32_t neighbour;
+  std::vector<std::vector<uint32_t>> loops;
+};
+
+// Step 2: chain each group's edges into loops. Where the polygon touches itself at a vertex (two
+// outgoing edges), the walk takes the sharpest left turn, so that every loop keeps the face
+// on its left without crossing itself and the loops meet there corner to corner (any other
+// pairing makes a ring that joins two separate fans of faces: not a 2-manifold vertex).
+// Deterministic: walks start at the smallest vertex with a single outgoing edge if any.
+std::vector<RawFace> chain_loops(const CellComplex& cx, EdgeGroups& groups) {
   std::vector<RawFace> raw;
   for (auto& [key, edges] : groups) {
     std::map<uint32_t, std::vector<uint32_t>> next;
@@ -159,11 +169,16 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
     }
     raw.push_back(std::move(rf));
   }
-  // 3. Drop vertices that lie in the middle of a straight edge shared by exactly two faces.
-  //    Both edges at such a vertex lying on the same two planes, clearly not parallel, are on
-  //    those planes' line: collinear without exact arithmetic (the complex's facets lie exactly
-  //    on their planes).
-  //    Otherwise the exact predicate decides (a bend between two faces of one plane).
+  return raw;
+}
+
+// Step 3: drop vertices that lie in the middle of a straight edge shared by exactly two faces.
+// Both edges at such a vertex lying on the same two planes, clearly not parallel, are on
+// those planes' line: collinear without exact arithmetic (the complex's facets lie exactly
+// on their planes).
+// Otherwise the exact predicate decides (a bend between two faces of one plane).
+std::unordered_set<uint32_t> straight_vertices(const CellComplex& cx, const std::vector<RawFace>& raw,
+                                               const LevelSurfaceContext& level) {
   std::unordered_map<uint32_t, std::vector<uint32_t>> nbrs;
   std::unordered_map<uint64_t, std::vector<uint32_t>> edge_planes;  // undirected edge -> face planes
   for (const auto& rf : raw)
@@ -193,9 +208,12 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
         (on_two_common_planes(ns[0], v, ns[1]) || cx.collinear(ns[0], v, ns[1])))
       drop.insert(v);
   }
-  s.dropped.assign(drop.begin(), drop.end());
-  std::sort(s.dropped.begin(), s.dropped.end());
-  // 4. Outer rings vs holes by orientation about the outward normal; holes go to their outer ring.
+  return drop;
+}
+
+// Step 4: outer rings vs holes by orientation about the outward normal; holes go to their outer ring.
+void rings_and_holes(const CellComplex& cx, std::vector<RawFace>& raw,
+                     const std::unordered_set<uint32_t>& drop, Surface& s) {
   for (auto& rf : raw) {
     Vec3 n = cx.planes()[rf.plane].n;
     if (!rf.plus) n = -n;
@@ -221,7 +239,10 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
     }
     for (auto& f : faces) s.faces.push_back(std::move(f));
   }
-  // 5. Closedness and manifoldness of the merged surface.
+}
+
+// Step 5: closedness and manifoldness of the merged surface.
+void count_open_edges(Surface& s) {
   std::unordered_map<uint64_t, int> uses;
   for (const auto& f : s.faces)
     for (const auto& r : f.rings)
@@ -234,6 +255,21 @@ Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cell
     if (fwd != bwd) ++s.boundary_edges;
     if (fwd + bwd > 2) ++s.nonmanifold_edges;
   }
+}
+
+}  // namespace
+
+// A driver over the five steps above (docs/algorithm.md §15).
+Surface extract_surface(const CellComplex& cx, const std::vector<uint32_t>& cells,
+                        const std::vector<uint32_t>* solid, const LevelSurfaceContext& level) {
+  Surface s;
+  EdgeGroups groups = group_boundary_edges(cx, cells, solid, level);
+  std::vector<RawFace> raw = chain_loops(cx, groups);
+  const std::unordered_set<uint32_t> drop = straight_vertices(cx, raw, level);
+  s.dropped.assign(drop.begin(), drop.end());
+  std::sort(s.dropped.begin(), s.dropped.end());
+  rings_and_holes(cx, raw, drop, s);
+  count_open_edges(s);
   return s;
 }
 
