@@ -306,26 +306,128 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
 
 }  // namespace
 
-std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::io::Header& h,
-                                           const ValidateOptions& opt, ValidationCounts& counts) {
-  ++counts.features;
+namespace {
+
+// Step 1: every object's structure findings, and the reader's problems on their objects (a
+// problem starts with its object's id).
+std::map<std::string, ObjectReport> structure_reports(const mc::io::Feature& f) {
   const json& objects = f.objects;
-  std::map<std::string, ObjectReport> reports;  // every object's structure findings
+  std::map<std::string, ObjectReport> reports;
   for (auto it = objects.begin(); it != objects.end(); ++it) {
     ObjectReport& r = reports[it.key()];
     r.id = it.key();
     r.type = it->is_object() ? it->value("type", "") : "";
     check_structure(it.key(), *it, objects, r);
   }
-  // The reader's per-object problems start with the object's id.
   for (const auto& p : f.problems) {
     std::string owner = f.id;
     for (const auto& [id, r] : reports)
       if (p.size() > id.size() && p.compare(0, id.size() + 1, id + ":") == 0) owner = id;
     if (reports.count(owner)) add(reports[owner], vc::kReadProblem, p);
   }
-  counts.objects += reports.size();
+  return reports;
+}
 
+// Step 2: the building's parts (children with morphcut_level, in "children" order; then any
+// orphans), each checked as a solid in metres with val3dity's tolerances.
+std::vector<Part> checked_parts(const mc::io::Feature& f, const json& bobj, const std::vector<Vec3>& vertices,
+                                const SolidTolerances& stol, std::map<std::string, ObjectReport>& reports) {
+  const json& objects = f.objects;
+  std::vector<std::string> ids;
+  for (const auto& c : string_list(bobj, "children"))
+    if (objects.contains(c) && is_our_part(objects[c])) ids.push_back(c);
+  for (auto it = objects.begin(); it != objects.end(); ++it)
+    if (is_our_part(*it) && std::find(ids.begin(), ids.end(), it.key()) == ids.end()) {
+      add(reports[it.key()], vc::kParentsChildren,
+          "a morphcut part that the building does not list as a child");
+      ids.push_back(it.key());
+    }
+  std::vector<Part> parts;
+  for (const auto& id : ids) {
+    Part p;
+    p.id = id;
+    p.report = std::move(reports[id]);
+    const json& obj = objects[id];
+    p.level = obj["attributes"]["morphcut_level"].get<double>();
+    p.report.level = p.level;
+    const PolygonMesh m = part_solid(obj, vertices, p.report);
+    if (!m.faces.empty()) {
+      p.check = check_solid(m, stol);
+      for (const auto& e : p.check.errors) p.report.errors.push_back({e.code, e.name, e.message});
+      if (p.check.closed_manifold) {
+        p.report.volume = p.check.volume;
+        p.report.convexity = p.check.convexity;
+      }
+    } else {
+      add(p.report, vc::kInvalidObject, "the Solid has no surfaces");
+    }
+    parts.push_back(std::move(p));
+  }
+  return parts;
+}
+
+// Step 3: val3dity's 601 compares every Solid of the Building and its BuildingParts at one LoD:
+// parts of several levels under one building, or an input Solid left at the LoD of the parts,
+// overlap them.
+void check_lod_overlaps(const mc::io::Feature& f, const std::vector<Part>& parts, ObjectReport& br) {
+  const json& objects = f.objects;
+  std::set<std::string> part_lods;
+  std::set<double> part_levels;
+  for (const Part& p : parts) {
+    for (const auto& g : objects[p.id].value("geometry", json::array()))
+      if (g.is_object() && g.contains("lod")) part_lods.insert(mc::io::lod_string(g["lod"]));
+    part_levels.insert(p.level);
+  }
+  if (part_levels.size() > 1)
+    add(br, vc::kPartsOverlap,
+        "parts of " + std::to_string(part_levels.size()) +
+            " levels hang under one Building at the same LoD and overlap each other");
+  std::vector<std::string> family{f.id};
+  for (size_t k = 0; k < family.size() && !part_lods.empty(); ++k) {
+    const json& o = objects[family[k]];
+    for (const auto& g : o.value("geometry", json::array())) {
+      if (!g.is_object()) continue;
+      const std::string type = g.value("type", ""),
+                        lod = g.contains("lod") ? mc::io::lod_string(g["lod"]) : "";
+      if ((type == "Solid" || type == "CompositeSolid") && part_lods.count(lod))
+        add(br, vc::kPartsOverlap,
+            "the input " + type + " of " + family[k] + " at LoD " + lod +
+                " overlaps the morphcut parts at that LoD");
+    }
+    for (const auto& c : string_list(o, "children"))
+      if (objects.contains(c) && !is_our_part(objects[c]) &&
+          std::find(family.begin(), family.end(), c) == family.end())
+        family.push_back(c);
+  }
+}
+
+// Step 4: the building's status against its parts; ok and partial buildings' parts must tile it.
+void check_status(const json& bobj, std::vector<Part>& parts, double scale, const ValidateOptions& opt,
+                  ValidationCounts& counts, ObjectReport& br) {
+  const bool has_attributes = bobj.contains("attributes") && bobj["attributes"].is_object();
+  const std::string status = has_attributes ? bobj["attributes"].value("morphcut_status", "") : "";
+  const bool level_view = has_attributes && bobj["attributes"].contains("morphcut_level");
+  if ((status == "ok" || status == "partial") && parts.empty() && !level_view) {
+    br.note = "annotated input: the parts are in the level outputs";
+  } else if (status == "ok" || status == "partial") {
+    if (parts.empty()) add(br, vc::kPartsStatusMismatch, "status " + status + " but no morphcut parts");
+    else check_tiling(br, bobj, parts, scale, opt, counts);
+  } else if (!parts.empty()) {
+    add(br, vc::kPartsStatusMismatch,
+        "status \"" + status + "\" but " + std::to_string(parts.size()) + " morphcut parts");
+  } else {
+    br.note =
+        status.empty() ? "no parts (not processed by morphcut-city)" : "no parts (status " + status + ")";
+  }
+}
+
+}  // namespace
+
+std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::io::Header& h,
+                                           const ValidateOptions& opt, ValidationCounts& counts) {
+  ++counts.features;
+  std::map<std::string, ObjectReport> reports = structure_reports(f);
+  counts.objects += reports.size();
   const mc::io::Transform t = mc::io::parse_transform(h.root, "header");
   // Checks in metres, as the parts were checked when written (core/working_frame.hpp).
   const WorkingFrame frame(h.coords, f.vertices);
@@ -341,88 +443,13 @@ std::vector<ObjectReport> validate_feature(const mc::io::Feature& f, const mc::i
   const SolidTolerances stol{opt.snap, opt.planarity, opt.normals_deg, true, 0};
   std::vector<ObjectReport> out;
   std::set<std::string> emitted;
-  const bool building = mc::io::is_building(f);
-  if (building && reports.count(f.id)) {
+  if (mc::io::is_building(f) && reports.count(f.id)) {
     ++counts.buildings;
     ObjectReport br = std::move(reports[f.id]);
-    const json& bobj = objects[f.id];
-    const std::string status = bobj.contains("attributes") && bobj["attributes"].is_object()
-                                   ? bobj["attributes"].value("morphcut_status", "")
-                                   : "";
-    // Our parts: children with morphcut_level, in "children" order; then any orphans.
-    std::vector<std::string> ids;
-    for (const auto& c : string_list(bobj, "children"))
-      if (objects.contains(c) && is_our_part(objects[c])) ids.push_back(c);
-    for (auto it = objects.begin(); it != objects.end(); ++it)
-      if (is_our_part(*it) && std::find(ids.begin(), ids.end(), it.key()) == ids.end()) {
-        add(reports[it.key()], vc::kParentsChildren,
-            "a morphcut part that the building does not list as a child");
-        ids.push_back(it.key());
-      }
-    std::vector<Part> parts;
-    for (const auto& id : ids) {
-      Part p;
-      p.id = id;
-      p.report = std::move(reports[id]);
-      const json& obj = objects[id];
-      p.level = obj["attributes"]["morphcut_level"].get<double>();
-      p.report.level = p.level;
-      const PolygonMesh m = part_solid(obj, vertices, p.report);
-      if (!m.faces.empty()) {
-        p.check = check_solid(m, stol);
-        for (const auto& e : p.check.errors) p.report.errors.push_back({e.code, e.name, e.message});
-        if (p.check.closed_manifold) {
-          p.report.volume = p.check.volume;
-          p.report.convexity = p.check.convexity;
-        }
-      } else {
-        add(p.report, vc::kInvalidObject, "the Solid has no surfaces");
-      }
-      parts.push_back(std::move(p));
-    }
-    // val3dity's 601 compares every Solid of the Building and its BuildingParts at one LoD: an
-    // input Solid left at the LoD of the parts overlaps them.
-    std::set<std::string> part_lods;
-    for (const auto& id : ids)
-      for (const auto& g : objects[id].value("geometry", json::array()))
-        if (g.is_object() && g.contains("lod")) part_lods.insert(mc::io::lod_string(g["lod"]));
-    std::set<double> part_levels;
-    for (const auto& id : ids) part_levels.insert(objects[id]["attributes"]["morphcut_level"].get<double>());
-    if (part_levels.size() > 1)
-      add(br, vc::kPartsOverlap,
-          "parts of " + std::to_string(part_levels.size()) +
-              " levels hang under one Building at the same LoD and overlap each other");
-    std::vector<std::string> family{f.id};
-    for (size_t k = 0; k < family.size() && !part_lods.empty(); ++k) {
-      const json& o = objects[family[k]];
-      for (const auto& g : o.value("geometry", json::array())) {
-        if (!g.is_object()) continue;
-        const std::string type = g.value("type", ""),
-                          lod = g.contains("lod") ? mc::io::lod_string(g["lod"]) : "";
-        if ((type == "Solid" || type == "CompositeSolid") && part_lods.count(lod))
-          add(br, vc::kPartsOverlap,
-              "the input " + type + " of " + family[k] + " at LoD " + lod +
-                  " overlaps the morphcut parts at that LoD");
-      }
-      for (const auto& c : string_list(o, "children"))
-        if (objects.contains(c) && !is_our_part(objects[c]) &&
-            std::find(family.begin(), family.end(), c) == family.end())
-          family.push_back(c);
-    }
-    const bool level_view = bobj.contains("attributes") && bobj["attributes"].is_object() &&
-                            bobj["attributes"].contains("morphcut_level");
-    if ((status == "ok" || status == "partial") && parts.empty() && !level_view) {
-      br.note = "annotated input: the parts are in the level outputs";
-    } else if (status == "ok" || status == "partial") {
-      if (parts.empty()) add(br, vc::kPartsStatusMismatch, "status " + status + " but no morphcut parts");
-      else check_tiling(br, bobj, parts, scale, opt, counts);
-    } else if (!parts.empty()) {
-      add(br, vc::kPartsStatusMismatch,
-          "status \"" + status + "\" but " + std::to_string(parts.size()) + " morphcut parts");
-    } else {
-      br.note =
-          status.empty() ? "no parts (not processed by morphcut-city)" : "no parts (status " + status + ")";
-    }
+    const json& bobj = f.objects[f.id];
+    std::vector<Part> parts = checked_parts(f, bobj, vertices, stol, reports);
+    check_lod_overlaps(f, parts, br);
+    check_status(bobj, parts, scale, opt, counts, br);
     (parts.empty() ? counts.buildings_without_parts : counts.buildings_with_parts)++;
     counts.invalid_buildings += !br.valid();
     emitted.insert(f.id);
