@@ -516,8 +516,8 @@ ojson level_array(const std::map<double, double, std::greater<>>& m, const std::
   return a;
 }
 
-ojson page_data(Page& page, const HtmlReportOptions& opt) {
-  // Without a report, counts and convexities come from the parts themselves.
+// Step 1: without a report, counts and convexities come from the parts themselves.
+void fill_from_parts(Page& page) {
   for (Building& b : page.buildings) {
     if (b.from_report) continue;
     for (const auto& [t, s] : b.part_sums) {
@@ -530,7 +530,10 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
     }
     if (b.status.empty()) b.status = "?";
   }
-  // The local origin: the city's minimum x/y, in whole metres.
+}
+
+// Step 2: the local origin: the city's minimum x/y, in whole metres.
+std::array<double, 2> local_origin(const Page& page) {
   double ox = std::numeric_limits<double>::infinity(), oy = ox;
   for (const Building& b : page.buildings) {
     for (const auto& r : b.footprint)
@@ -540,13 +543,13 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
       for (const auto& v : b.geo->v) ox = std::min(ox, v[0] / kMm), oy = std::min(oy, v[1] / kMm);
   }
   if (!std::isfinite(ox)) ox = oy = 0;
-  ox = std::floor(ox), oy = std::floor(oy);
+  return {std::floor(ox), std::floor(oy)};
+}
 
-  size_t with_fp = 0;
-  for (const Building& b : page.buildings) with_fp += !b.footprint.empty();
-  const bool draw_footprints = with_fp <= opt.max_footprints;
-
-  // Each embedded building's geometry; then, by rank, as many as fit in the byte budget.
+// Step 3: each embedded building's geometry; then, by rank, as many as fit in the byte budget
+// (the others null). Counts those left out in `over_budget`.
+std::vector<ojson> embedded_geometry(Page& page, const HtmlReportOptions& opt, double ox, double oy,
+                                     size_t& over_budget) {
   std::vector<ojson> geo_json(page.buildings.size());
   std::vector<size_t> with_geo;
   for (size_t i = 0; i < page.buildings.size(); ++i) {
@@ -573,13 +576,43 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
   }
   std::stable_sort(with_geo.begin(), with_geo.end(),
                    [&](size_t a, size_t b) { return page.buildings[a].rank < page.buildings[b].rank; });
-  size_t geo_bytes = 0, over_budget = 0;
+  size_t geo_bytes = 0;
   for (size_t i : with_geo) {
     const size_t n = geo_json[i].dump().size();
     if (geo_bytes + n > opt.max_3d_bytes) geo_json[i] = nullptr, ++over_budget;
     else geo_bytes += n;
   }
 
+  return geo_json;
+}
+
+// A footprint's rings on the decimetre grid about the origin, repeats dropped, flat x, y lists.
+ojson footprint_json(const Building& b, double ox, double oy) {
+  ojson fp = ojson::array();
+  for (const auto& ring : b.footprint) {
+    std::vector<std::array<int64_t, 2>> q;  // on the decimetre grid, repeats dropped
+    for (const auto& p : ring) {
+      const std::array<int64_t, 2> g{std::llround((p[0] - ox) * kDm), std::llround((p[1] - oy) * kDm)};
+      if (q.empty() || q.back() != g) q.push_back(g);
+    }
+    while (q.size() > 1 && q.front() == q.back()) q.pop_back();
+    if (q.size() < 3) continue;
+    ojson flat = ojson::array();
+    for (const auto& g : q) flat.push_back(g[0]), flat.push_back(g[1]);
+    fp.push_back(std::move(flat));
+  }
+  return fp;
+}
+
+ojson page_data(Page& page, const HtmlReportOptions& opt) {
+  fill_from_parts(page);
+  const std::array<double, 2> origin = local_origin(page);
+  const double ox = origin[0], oy = origin[1];
+  size_t with_fp = 0;
+  for (const Building& b : page.buildings) with_fp += !b.footprint.empty();
+  const bool draw_footprints = with_fp <= opt.max_footprints;
+  size_t over_budget = 0;
+  std::vector<ojson> geo_json = embedded_geometry(page, opt, ox, oy, over_budget);
   ojson rows = ojson::array();
   ojson geometry = ojson::array();
   std::map<std::string, size_t> tile_index;
@@ -603,19 +636,7 @@ ojson page_data(Page& page, const HtmlReportOptions& opt) {
     if (!b.role.empty()) r["ro"] = b.role, roles = true;
     if (std::isfinite(b.cx)) r["xy"] = {rounded(b.cx - ox, 0.1), rounded(b.cy - oy, 0.1)};
     if (draw_footprints && !b.footprint.empty()) {
-      ojson fp = ojson::array();
-      for (const auto& ring : b.footprint) {
-        std::vector<std::array<int64_t, 2>> q;  // on the decimetre grid, repeats dropped
-        for (const auto& p : ring) {
-          const std::array<int64_t, 2> g{std::llround((p[0] - ox) * kDm), std::llround((p[1] - oy) * kDm)};
-          if (q.empty() || q.back() != g) q.push_back(g);
-        }
-        while (q.size() > 1 && q.front() == q.back()) q.pop_back();
-        if (q.size() < 3) continue;
-        ojson flat = ojson::array();
-        for (const auto& g : q) flat.push_back(g[0]), flat.push_back(g[1]);
-        fp.push_back(std::move(flat));
-      }
+      ojson fp = footprint_json(b, ox, oy);
       if (!fp.empty()) r["fp"] = std::move(fp), ++footprints;
     }
     if (!geo_json[i].is_null()) {
