@@ -231,7 +231,7 @@ int CellComplex::cell_side(uint32_t c, uint32_t plane) const {
 std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t plane) {
   if (c >= cells_.size() || !cells_[c].alive) throw std::logic_error("cell complex: split of a dead cell");
   ensure_planes();
-  std::unordered_map<uint32_t, int> side;
+  VertexSides side;
   bool pos = false, neg = false;
   for (uint32_t v : cell_vertices(c)) {
     const int s = exact_->side(v, plane);
@@ -240,11 +240,29 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
     neg |= s < 0;
   }
   if (!pos || !neg) return std::nullopt;
-
-  // 1. New vertices on crossing edges, propagated to every facet using those edges.
   const std::vector<uint32_t> old_facets = cells_[c].facets;
+  cut_crossing_edges(old_facets, plane, side);
+  const uint32_t cn = static_cast<uint32_t>(cells_.size());
+  const uint32_t cp = cn + 1;
+  cells_.push_back(Cell{});
+  cells_.push_back(Cell{});
+  cells_[cn].parent = cells_[cp].parent = c;
+  std::unordered_map<uint32_t, uint32_t> cap_next;  // directed cap edges, outward for cn
+  distribute_facets(c, old_facets, cn, cp, side, cap_next);
+  add_section(plane, cn, cp, cap_next);
+  Cell& old = cells_[c];
+  old.alive = false;
+  old.split_plane = plane;
+  old.child_neg = cn;
+  old.child_pos = cp;
+  old.facets.clear();
+  return SplitResult{cn, cp};
+}
+
+// Step 1: new vertices on crossing edges, propagated to every facet using those edges.
+void CellComplex::cut_crossing_edges(const std::vector<uint32_t>& facets, uint32_t plane, VertexSides& side) {
   std::vector<std::pair<uint32_t, uint32_t>> crossing;
-  for (uint32_t f : old_facets) {
+  for (uint32_t f : facets) {
     const auto& loop = facets_[f].loop;
     for (size_t i = 0; i < loop.size(); ++i) {
       const uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
@@ -261,18 +279,21 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
     side[w] = 0;
     split_edge(a, b, w);
   }
+}
 
-  // 2. New cells; distribute (and split) the facets.
-  const uint32_t cn = static_cast<uint32_t>(cells_.size());
-  const uint32_t cp = cn + 1;
-  cells_.push_back(Cell{});
-  cells_.push_back(Cell{});
-  cells_[cn].parent = cells_[cp].parent = c;
-  std::unordered_map<uint32_t, uint32_t> cap_next;  // directed cap edges, outward for cn
+// Step 2: the cell's facets go to the children whole or split at the plane; the edges they leave
+// on the plane are gathered for the section.
+void CellComplex::distribute_facets(uint32_t c, const std::vector<uint32_t>& facets, uint32_t cn, uint32_t cp,
+                                    const VertexSides& side,
+                                    std::unordered_map<uint32_t, uint32_t>& cap_next) {
+  auto side_of = [&](uint32_t v) {
+    auto it = side.find(v);
+    return it == side.end() ? 0 : it->second;
+  };
   auto collect_cap_edges = [&](const std::vector<uint32_t>& outward) {
     for (size_t i = 0; i < outward.size(); ++i) {
       const uint32_t a = outward[i], b = outward[(i + 1) % outward.size()];
-      if (side[a] == 0 && side[b] == 0) cap_next[b] = a;  // the cap runs the edge backwards
+      if (side_of(a) == 0 && side_of(b) == 0) cap_next[b] = a;  // the cap runs the edge backwards
     }
   };
   auto attach = [&](uint32_t f, uint32_t to) {
@@ -290,15 +311,14 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
     *it = a;
     fs.push_back(b);
   };
-
-  for (uint32_t f : old_facets) {
+  for (uint32_t f : facets) {
     const std::vector<uint32_t> loop = facets_[f].loop;
     bool fp = false, fn = false;
     int zeros = 0;
     for (uint32_t v : loop) {
-      fp |= side[v] > 0;
-      fn |= side[v] < 0;
-      zeros += side[v] == 0;
+      fp |= side_of(v) > 0;
+      fn |= side_of(v) < 0;
+      zeros += side_of(v) == 0;
     }
     if (!fp && !fn) throw std::logic_error("cell complex: facet lies in the splitting plane");
     if (!fn) {
@@ -314,8 +334,8 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
     Facet lo, hi;
     lo.plane = hi.plane = facets_[f].plane;
     for (uint32_t v : loop) {
-      if (side[v] <= 0) lo.loop.push_back(v);
-      if (side[v] >= 0) hi.loop.push_back(v);
+      if (side_of(v) <= 0) lo.loop.push_back(v);
+      if (side_of(v) >= 0) hi.loop.push_back(v);
     }
     const bool c_in_front = facets_[f].front == c;
     const uint32_t other = c_in_front ? facets_[f].back : facets_[f].front;
@@ -336,8 +356,11 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
     cells_[cp].facets.push_back(fhi);
     replace_in_neighbour(other, f, flo, fhi);
   }
+}
 
-  // 3. The cap: the section polygon, chained from the directed edges gathered on P.
+// Step 3: the cap: the section polygon, chained from the directed edges gathered on the plane.
+void CellComplex::add_section(uint32_t plane, uint32_t cn, uint32_t cp,
+                              const std::unordered_map<uint32_t, uint32_t>& cap_next) {
   if (cap_next.size() < 3) throw std::logic_error("cell complex: degenerate section");
   uint32_t start = kNone;
   for (const auto& [a, b] : cap_next) start = std::min(start, a);
@@ -357,14 +380,6 @@ std::optional<CellComplex::SplitResult> CellComplex::split(uint32_t c, uint32_t 
   const uint32_t capf = add_facet(std::move(cap));
   cells_[cn].facets.push_back(capf);
   cells_[cp].facets.push_back(capf);
-
-  Cell& old = cells_[c];
-  old.alive = false;
-  old.split_plane = plane;
-  old.child_neg = cn;
-  old.child_pos = cp;
-  old.facets.clear();
-  return SplitResult{cn, cp};
 }
 
 Vec3 CellComplex::outward_normal(uint32_t f, uint32_t c) const {

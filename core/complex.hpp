@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "core/plane.hpp"
@@ -102,6 +103,14 @@ class CellComplex {
   uint32_t add_facet(Facet f);
   void kill_facet(uint32_t f);
   void split_edge(uint32_t a, uint32_t b, uint32_t w);
+  // split()'s steps (`side`: each vertex of the cell against the plane, -1/0/+1; `cap_next`: the
+  // section's directed edges, outward for the negative child).
+  using VertexSides = std::unordered_map<uint32_t, int>;
+  void cut_crossing_edges(const std::vector<uint32_t>& facets, uint32_t plane, VertexSides& side);
+  void distribute_facets(uint32_t c, const std::vector<uint32_t>& facets, uint32_t cn, uint32_t cp,
+                         const VertexSides& side, std::unordered_map<uint32_t, uint32_t>& cap_next);
+  void add_section(uint32_t plane, uint32_t cn, uint32_t cp,
+                   const std::unordered_map<uint32_t, uint32_t>& cap_next);
   void compute_cell_measures(uint32_t c) const;
 
   PlaneRegistry& planes_;
