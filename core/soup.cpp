@@ -108,26 +108,110 @@ std::vector<uint32_t> canonical_ring(const std::vector<uint32_t>& r) {
 
 }  // namespace
 
+namespace {
+
+// What cleaning did, for the problems list.
+struct CleanCounts {
+  size_t nonfinite = 0, merged = 0, bad_index = 0, repeat = 0, bad_outer = 0, bad_hole = 0, dup = 0,
+         unused = 0;
+};
+
+// A ring with its vertices replaced by their representatives and consecutive repeats removed;
+// empty when it is degenerate: fewer than 3 distinct points, or an area below what a ring of width
+// merge_tol could have, or negligible relative to the model size (`area_floor`).
+std::vector<uint32_t> clean_ring(const std::vector<uint32_t>& in, const std::vector<uint32_t>& rep,
+                                 const std::vector<Vec3>& vertices, double merge_tol, double area_floor,
+                                 size_t& repeats) {
+  std::vector<uint32_t> ring;
+  for (uint32_t v : in) {
+    const uint32_t m = rep[v];
+    if (!ring.empty() && ring.back() == m) {
+      ++repeats;
+      continue;
+    }
+    ring.push_back(m);
+  }
+  while (ring.size() > 1 && ring.front() == ring.back()) {
+    ring.pop_back();
+    ++repeats;
+  }
+  std::vector<uint32_t> distinct = ring;
+  std::sort(distinct.begin(), distinct.end());
+  if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3) return {};
+  double max_edge = 0;
+  for (size_t i = 0; i < ring.size(); ++i)
+    max_edge = std::max(max_edge, norm(vertices[ring[(i + 1) % ring.size()]] - vertices[ring[i]]));
+  const double area = 0.5 * norm(ring_area_vector(vertices, ring));
+  if (area <= std::max(area_floor, merge_tol * max_edge)) return {};
+  return ring;
+}
+
+// A face's identity up to ring rotation and hole order: duplicate faces have equal keys.
+std::vector<uint32_t> face_key(const Polygon& g) {
+  std::vector<uint32_t> key = canonical_ring(g.rings[0]);
+  std::vector<std::vector<uint32_t>> holes;
+  for (size_t r = 1; r < g.rings.size(); ++r) holes.push_back(canonical_ring(g.rings[r]));
+  std::sort(holes.begin(), holes.end());
+  for (const auto& h : holes) {
+    key.push_back(UINT32_MAX);
+    key.insert(key.end(), h.begin(), h.end());
+  }
+  return key;
+}
+
+// Compact: keep the used vertices in their original order, renumber the faces' rings.
+void compact_vertices(const PolygonMesh& mesh, const std::vector<bool>& finite,
+                      const std::vector<uint32_t>& rep, std::vector<Polygon> kept, PolygonMesh& out,
+                      size_t& unused) {
+  const size_t nv = mesh.vertices.size();
+  std::vector<uint32_t> new_index(nv, UINT32_MAX);
+  for (const Polygon& f : kept)
+    for (const auto& ring : f.rings)
+      for (uint32_t v : ring) new_index[v] = 0;
+  for (size_t i = 0; i < nv; ++i) {
+    if (new_index[i] == 0) {
+      new_index[i] = static_cast<uint32_t>(out.vertices.size());
+      out.vertices.push_back(mesh.vertices[i]);
+    } else if (finite[i] && rep[i] == i) {
+      ++unused;
+    }
+  }
+  for (Polygon& f : kept)
+    for (auto& ring : f.rings)
+      for (uint32_t& v : ring) v = new_index[v];
+  out.faces = std::move(kept);
+}
+
+void report_cleaning(const CleanCounts& n, std::vector<std::string>& problems) {
+  auto report = [&](size_t k, const char* what) {
+    if (k) problems.push_back(std::to_string(k) + " " + what);
+  };
+  report(n.nonfinite, "vertices with non-finite coordinates dropped");
+  report(n.bad_index, "faces dropped: non-finite vertex, bad index or no ring");
+  report(n.merged, "duplicate vertices merged");
+  report(n.repeat, "repeated consecutive ring indices removed");
+  report(n.bad_outer, "faces dropped: degenerate outer ring (< 3 points or ~zero area)");
+  report(n.bad_hole, "degenerate hole rings dropped");
+  report(n.dup, "duplicate faces dropped");
+  report(n.unused, "unused vertices removed");
+}
+
+}  // namespace
+
 PolygonMesh clean_soup(const PolygonMesh& mesh, double merge_tol, std::vector<std::string>* problems) {
   const size_t nv = mesh.vertices.size();
+  CleanCounts n;
   std::vector<bool> finite(nv);
-  size_t n_nonfinite = 0;
   BBox box;
   for (size_t i = 0; i < nv; ++i) {
     finite[i] = is_finite(mesh.vertices[i]);
-    if (!finite[i]) ++n_nonfinite;
+    if (!finite[i]) ++n.nonfinite;
     else box.add(mesh.vertices[i]);
   }
   const std::vector<uint32_t> rep = merge_vertices(mesh.vertices, finite, merge_tol);
-  size_t n_merged = 0;
-  for (size_t i = 0; i < nv; ++i) n_merged += finite[i] && rep[i] != i;
-
-  // A ring is degenerate when its area is below what a ring of width merge_tol could have,
-  // or negligible relative to the model size.
+  for (size_t i = 0; i < nv; ++i) n.merged += finite[i] && rep[i] != i;
   const double diag = box.diagonal();
   const double area_floor = 1e-14 * diag * diag;
-
-  size_t n_bad_index = 0, n_repeat = 0, n_bad_outer = 0, n_bad_hole = 0, n_dup = 0;
   PolygonMesh out;
   out.semantic_labels = mesh.semantic_labels;
   std::set<std::vector<uint32_t>> seen;
@@ -138,94 +222,33 @@ PolygonMesh clean_soup(const PolygonMesh& mesh, double merge_tol, std::vector<st
       for (uint32_t v : ring)
         if (v >= nv || !finite[v]) usable = false;
     if (!usable) {
-      ++n_bad_index;
+      ++n.bad_index;
       continue;
     }
     Polygon g;
     g.semantic = f.semantic;
     for (size_t r = 0; r < f.rings.size(); ++r) {
-      std::vector<uint32_t> ring;
-      for (uint32_t v : f.rings[r]) {
-        const uint32_t m = rep[v];
-        if (!ring.empty() && ring.back() == m) {
-          ++n_repeat;
-          continue;
-        }
-        ring.push_back(m);
-      }
-      while (ring.size() > 1 && ring.front() == ring.back()) {
-        ring.pop_back();
-        ++n_repeat;
-      }
-      std::vector<uint32_t> distinct = ring;
-      std::sort(distinct.begin(), distinct.end());
-      bool bad = std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3;
-      if (!bad) {
-        double max_edge = 0;
-        for (size_t i = 0; i < ring.size(); ++i)
-          max_edge =
-              std::max(max_edge, norm(mesh.vertices[ring[(i + 1) % ring.size()]] - mesh.vertices[ring[i]]));
-        const double area = 0.5 * norm(ring_area_vector(mesh.vertices, ring));
-        bad = area <= std::max(area_floor, merge_tol * max_edge);
-      }
-      if (bad) {
+      std::vector<uint32_t> ring =
+          clean_ring(f.rings[r], rep, mesh.vertices, merge_tol, area_floor, n.repeat);
+      if (ring.empty()) {
         if (r == 0) {
-          ++n_bad_outer;
+          ++n.bad_outer;
           break;
         }
-        ++n_bad_hole;
+        ++n.bad_hole;
         continue;
       }
       g.rings.push_back(std::move(ring));
     }
     if (g.rings.empty()) continue;  // the outer ring was degenerate: its holes go with it
-    std::vector<uint32_t> key = canonical_ring(g.rings[0]);
-    std::vector<std::vector<uint32_t>> holes;
-    for (size_t r = 1; r < g.rings.size(); ++r) holes.push_back(canonical_ring(g.rings[r]));
-    std::sort(holes.begin(), holes.end());
-    for (const auto& h : holes) {
-      key.push_back(UINT32_MAX);
-      key.insert(key.end(), h.begin(), h.end());
-    }
-    if (!seen.insert(std::move(key)).second) {
-      ++n_dup;
+    if (!seen.insert(face_key(g)).second) {
+      ++n.dup;
       continue;
     }
     kept.push_back(std::move(g));
   }
-
-  // Compact: keep used vertices in their original order.
-  std::vector<uint32_t> new_index(nv, UINT32_MAX);
-  for (const Polygon& f : kept)
-    for (const auto& ring : f.rings)
-      for (uint32_t v : ring) new_index[v] = 0;
-  size_t n_unused = 0;
-  for (size_t i = 0; i < nv; ++i) {
-    if (new_index[i] == 0) {
-      new_index[i] = static_cast<uint32_t>(out.vertices.size());
-      out.vertices.push_back(mesh.vertices[i]);
-    } else if (finite[i] && rep[i] == i) {
-      ++n_unused;
-    }
-  }
-  for (Polygon& f : kept)
-    for (auto& ring : f.rings)
-      for (uint32_t& v : ring) v = new_index[v];
-  out.faces = std::move(kept);
-
-  if (problems) {
-    auto report = [&](size_t n, const char* what) {
-      if (n) problems->push_back(std::to_string(n) + " " + what);
-    };
-    report(n_nonfinite, "vertices with non-finite coordinates dropped");
-    report(n_bad_index, "faces dropped: non-finite vertex, bad index or no ring");
-    report(n_merged, "duplicate vertices merged");
-    report(n_repeat, "repeated consecutive ring indices removed");
-    report(n_bad_outer, "faces dropped: degenerate outer ring (< 3 points or ~zero area)");
-    report(n_bad_hole, "degenerate hole rings dropped");
-    report(n_dup, "duplicate faces dropped");
-    report(n_unused, "unused vertices removed");
-  }
+  compact_vertices(mesh, finite, rep, std::move(kept), out, n.unused);
+  if (problems) report_cleaning(n, *problems);
   return out;
 }
 
