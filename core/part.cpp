@@ -1,6 +1,7 @@
 #include "core/part.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -194,6 +195,79 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
 // Merges nearly coincident lines that share a plane (docs/algorithm.md §9.4): a small step
 // (convex + reflex within δ) becomes a ≈180° line that is then dropped; two shallow reflex
 // edges around a chamfer add up into one stronger line.
+namespace {
+
+// The extent [lo, hi] of line L along line M.
+void extent_along(const ConcaveLine& L, const ConcaveLine& M, double& lo, double& hi) {
+  const double s0 = dot(L.point + L.dir * L.t0 - M.point, M.dir);
+  const double s1 = dot(L.point + L.dir * L.t1 - M.point, M.dir);
+  lo = std::min(s0, s1);
+  hi = std::max(s0, s1);
+}
+
+// The line that two concave lines sharing a plane merge into (their other planes' line over
+// their common extent), or nothing: neither reflex, no shared plane, not parallel within 0.95,
+// more than δ apart, or overlapping by δ or less.
+std::optional<ConcaveLine> merged_line(const RawLine& r1, const RawLine& r2, const PlaneRegistry& reg,
+                                       double delta) {
+  const ConcaveLine& L1 = r1.line;
+  const ConcaveLine& L2 = r2.line;
+  if (!r1.reflex && !r2.reflex) return std::nullopt;
+  // The plane the two lines share, and each line's other plane with its normal (the first
+  // pairing in the order p1/p1, p1/p2, p2/p1, p2/p2).
+  uint32_t b = 0, c = 0;
+  Vec3 nb, nc;
+  bool paired = false;
+  for (int s1 = 0; s1 < 2 && !paired; ++s1)
+    for (int s2 = 0; s2 < 2 && !paired; ++s2) {
+      const uint32_t a1 = s1 ? L1.p2 : L1.p1, o1 = s1 ? L1.p1 : L1.p2;
+      const uint32_t a2 = s2 ? L2.p2 : L2.p1, o2 = s2 ? L2.p1 : L2.p2;
+      if (a1 != a2 || o1 == o2) continue;
+      b = o1, nb = s1 ? L1.n1 : L1.n2;
+      c = o2, nc = s2 ? L2.n1 : L2.n2;
+      paired = true;
+    }
+  if (!paired) return std::nullopt;
+  if (b == c || std::abs(dot(L1.dir, L2.dir)) < 0.95) return std::nullopt;
+  const Vec3 mid2 = L2.point + L2.dir * (0.5 * (L2.t0 + L2.t1));
+  const Vec3 off = mid2 - L1.point;
+  if (norm(off - L1.dir * dot(off, L1.dir)) > delta) return std::nullopt;
+  ConcaveLine M;
+  const Vec3 mid1 = L1.point + L1.dir * (0.5 * (L1.t0 + L1.t1));
+  if (!plane_pair_line(reg[b], reg[c], (mid1 + mid2) * 0.5, M.point, M.dir)) return std::nullopt;
+  double a0, a1, b0, b1;
+  extent_along(L1, M, a0, a1);
+  extent_along(L2, M, b0, b1);
+  M.t0 = std::max(a0, b0);
+  M.t1 = std::min(a1, b1);
+  if (M.t1 - M.t0 <= delta) return std::nullopt;
+  M.p1 = std::min(b, c);
+  M.p2 = std::max(b, c);
+  M.n1 = b < c ? nb : nc;
+  M.n2 = b < c ? nc : nb;
+  M.angle = L1.angle + L2.angle - M_PI;
+  return M;
+}
+
+// Appends the remainders of line `src` outside M's extent that are longer than δ, as they were.
+void append_remainders(std::vector<RawLine>& lines, size_t src, const ConcaveLine& M, double delta) {
+  double lo, hi;
+  extent_along(lines[src].line, M, lo, hi);
+  auto keep_piece = [&](double s0, double s1) {
+    if (s1 - s0 <= delta) return;
+    RawLine r = lines[src];
+    const double u0 = dot(M.point + M.dir * s0 - r.line.point, r.line.dir);
+    const double u1 = dot(M.point + M.dir * s1 - r.line.point, r.line.dir);
+    r.line.t0 = std::min(u0, u1);
+    r.line.t1 = std::max(u0, u1);
+    lines.push_back(r);
+  };
+  keep_piece(lo, std::min(hi, M.t0));
+  keep_piece(std::max(lo, M.t1), hi);
+}
+
+}  // namespace
+
 void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
   // Lines keep their index for the whole merge: a merged pair is marked dead and its replacements
   // are appended, so the live lines in index order are the list a rebuilt vector would hold, and
@@ -229,67 +303,13 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
       for (size_t ci = 0; ci < cand.size() && !merged; ++ci) {
         const size_t j = cand[ci];
-        ConcaveLine& L1 = lines[i].line;
-        ConcaveLine& L2 = lines[j].line;
-        if (!lines[i].reflex && !lines[j].reflex) continue;
-        // The plane the two lines share, and each line's other plane with its normal (the first
-        // pairing in the order p1/p1, p1/p2, p2/p1, p2/p2).
-        uint32_t b = 0, c = 0;
-        Vec3 nb, nc;
-        bool paired = false;
-        for (int s1 = 0; s1 < 2 && !paired; ++s1)
-          for (int s2 = 0; s2 < 2 && !paired; ++s2) {
-            const uint32_t a1 = s1 ? L1.p2 : L1.p1, o1 = s1 ? L1.p1 : L1.p2;
-            const uint32_t a2 = s2 ? L2.p2 : L2.p1, o2 = s2 ? L2.p1 : L2.p2;
-            if (a1 != a2 || o1 == o2) continue;
-            b = o1, nb = s1 ? L1.n1 : L1.n2;
-            c = o2, nc = s2 ? L2.n1 : L2.n2;
-            paired = true;
-          }
-        if (!paired) continue;
-        if (b == c || std::abs(dot(L1.dir, L2.dir)) < 0.95) continue;
-        const Vec3 mid2 = L2.point + L2.dir * (0.5 * (L2.t0 + L2.t1));
-        const Vec3 off = mid2 - L1.point;
-        if (norm(off - L1.dir * dot(off, L1.dir)) > delta) continue;
-        ConcaveLine M;
-        const Vec3 mid1 = L1.point + L1.dir * (0.5 * (L1.t0 + L1.t1));
-        if (!plane_pair_line(reg[b], reg[c], (mid1 + mid2) * 0.5, M.point, M.dir)) continue;
-        auto extent = [&](const ConcaveLine& L, double& lo, double& hi) {
-          const double s0 = dot(L.point + L.dir * L.t0 - M.point, M.dir);
-          const double s1 = dot(L.point + L.dir * L.t1 - M.point, M.dir);
-          lo = std::min(s0, s1);
-          hi = std::max(s0, s1);
-        };
-        double a0, a1, b0, b1;
-        extent(L1, a0, a1);
-        extent(L2, b0, b1);
-        M.t0 = std::max(a0, b0);
-        M.t1 = std::min(a1, b1);
-        if (M.t1 - M.t0 <= delta) continue;
-        M.p1 = std::min(b, c);
-        M.p2 = std::max(b, c);
-        M.n1 = b < c ? nb : nc;
-        M.n2 = b < c ? nc : nb;
-        M.angle = L1.angle + L2.angle - M_PI;
+        const std::optional<ConcaveLine> M = merged_line(lines[i], lines[j], reg, delta);
+        if (!M) continue;
         // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were; the
-        // pieces and the merged line are appended (L1 and L2 are not used from here on).
+        // pieces and the merged line are appended.
         const size_t before = lines.size();
-        for (const size_t src : {i, j}) {
-          double lo, hi;
-          extent(lines[src].line, lo, hi);
-          auto keep_piece = [&](double s0, double s1) {
-            if (s1 - s0 <= delta) return;
-            RawLine r = lines[src];
-            const double u0 = dot(M.point + M.dir * s0 - r.line.point, r.line.dir);
-            const double u1 = dot(M.point + M.dir * s1 - r.line.point, r.line.dir);
-            r.line.t0 = std::min(u0, u1);
-            r.line.t1 = std::max(u0, u1);
-            lines.push_back(r);
-          };
-          keep_piece(lo, std::min(hi, M.t0));
-          keep_piece(std::max(lo, M.t1), hi);
-        }
-        lines.push_back({M, M.angle > M_PI});
+        for (const size_t src : {i, j}) append_remainders(lines, src, *M, delta);
+        lines.push_back({*M, M->angle > M_PI});
         alive[i] = alive[j] = 0;
         alive.resize(lines.size(), 1);
         for (size_t k = before; k < lines.size(); ++k) {
