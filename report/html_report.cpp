@@ -386,6 +386,97 @@ void rank_3d(Page& page, size_t bound) {
   }
 }
 
+// The page's building for a feature, added (ranked, with or without 3D) when new.
+Building& building_for(Page& page, const std::string& id, const HtmlReportOptions& opt, bool have_report) {
+  auto found = page.by_id.find(id);
+  if (found != page.by_id.end()) return page.buildings[found->second];
+  Building& nb = page.add(id);
+  nb.rank = page.buildings.size() - 1;
+  nb.want_3d = !have_report && nb.rank < opt.max_3d_buildings;
+  return nb;
+}
+
+// Without a report: status, reason, Hausdorff distance and part counts from the Building's
+// morphcut attributes.
+void status_from_attributes(const json& battr, Building& b, std::set<double>& new_levels) {
+  if (b.from_report || !b.status.empty() || !member(battr, "morphcut_status").is_string()) return;
+  b.status = member(battr, "morphcut_status").get<std::string>();
+  if (member(battr, "morphcut_reason").is_string())
+    b.reason = member(battr, "morphcut_reason").get<std::string>();
+  if (member(battr, "morphcut_hausdorff").is_number())
+    b.hausdorff = member(battr, "morphcut_hausdorff").get<double>();
+  const json& ps = member(battr, "morphcut_parts");
+  const json& ls = member(battr, "morphcut_levels");
+  if (ps.is_array() && ls.is_array())
+    for (size_t i = 0; i < std::min(ps.size(), ls.size()); ++i)
+      if (ps[i].is_number() && ls[i].is_number()) {
+        b.parts[ls[i].get<double>()] = ps[i].get<int>();
+        new_levels.insert(ls[i].get<double>());
+      }
+}
+
+// Parts: BuildingParts with morphcut_level, each level from the first file that has it (a
+// per-level file also marks the Building itself with the level it shows).
+void read_parts(const mc::io::Feature& f, size_t file_index, Building& b, std::set<double>& new_levels) {
+  for (auto it = f.objects.begin(); it != f.objects.end(); ++it) {
+    if (!member(it.value(), "type").is_string() ||
+        member(it.value(), "type").get<std::string>() != "BuildingPart")
+      continue;
+    const json& attr = member(it.value(), "attributes");
+    const json& level = member(attr, "morphcut_level");
+    if (!level.is_number()) continue;
+    const double t = level.get<double>();
+    const auto [lf, fresh] = b.level_file.try_emplace(t, file_index);
+    if (!fresh && lf->second != file_index) continue;
+    new_levels.insert(t);
+    const double volume = member(attr, "volume").is_number() ? member(attr, "volume").get<double>() : 0.0;
+    const double cvx = member(attr, "convexity").is_number() ? member(attr, "convexity").get<double>() : kNaN;
+    const json& role = member(attr, "morphcut_role");
+    // The building's role: that of its largest part at the coarsest level.
+    if (role.is_string() &&
+        (!std::isfinite(b.role_level) || t > b.role_level || (t == b.role_level && volume > b.role_volume))) {
+      b.role = role.get<std::string>();
+      b.role_level = t;
+      b.role_volume = volume;
+    }
+    auto& s = b.part_sums.try_emplace(t, std::array<double, 2>{0, 0}).first->second;
+    if (std::isfinite(cvx)) s[0] += volume, s[1] += volume * cvx;
+    if (!b.want_3d) continue;
+    if (!b.geo) b.geo = std::make_unique<Geometry>();
+    ojson faces = ojson::array();
+    for (const auto& rings : part_faces(it.value(), f.vertices)) b.geo->add_face(faces, rings);
+    const json& nb = member(attr, "neighbours");
+    ojson& lvl = b.geo->levels.try_emplace(t, ojson::array()).first->second;
+    lvl.push_back(ojson::array(
+        {member(attr, "morphcut_index").is_number() ? ojson(member(attr, "morphcut_index"))
+                                                    : ojson(lvl.size()),
+         rounded(volume, 1e-3), rounded(cvx, 1e-4), nb.is_array() ? nb.size() : 0,
+         role.is_string() ? ojson(role.get<std::string>()) : ojson(nullptr), it.key(), std::move(faces)}));
+  }
+}
+
+// The input ghost and footprint: the building's own geometry without morphcut parts.
+void read_ghost(mc::io::Feature& f, const mc::io::Header& header, Building& b) {
+  if (b.ghost_done) return;
+  strip_previous_parts(f);
+  const mc::io::BuildingInput in = mc::io::extract_building(f, header, "highest");
+  if (in.mesh.empty()) return;
+  b.ghost_done = true;
+  set_footprint(b, in.mesh);
+  if (!b.want_3d) return;
+  if (!b.geo) b.geo = std::make_unique<Geometry>();
+  for (const Polygon& face : in.mesh.faces) {
+    std::vector<std::vector<Vec3>> rings;
+    for (const auto& r : face.rings) {
+      std::vector<Vec3> ring;
+      for (uint32_t i : r)
+        if (i < in.mesh.vertices.size()) ring.push_back(in.mesh.vertices[i]);
+      rings.push_back(std::move(ring));
+    }
+    b.geo->add_face(b.geo->ghost, rings);
+  }
+}
+
 void read_city_file(const std::string& path, size_t file_index, Page& page, const HtmlReportOptions& opt,
                     bool have_report) {
   std::unique_ptr<mc::io::FeatureSource> src;
@@ -410,95 +501,10 @@ void read_city_file(const std::string& path, size_t file_index, Page& page, cons
       if (!page.frame) page.frame.emplace(header.coords, f.vertices);
       page.frame->to_metric(f.vertices);
     }
-    auto found = page.by_id.find(f.id);
-    Building* bp;
-    if (found == page.by_id.end()) {
-      Building& nb = page.add(f.id);
-      nb.rank = page.buildings.size() - 1;
-      nb.want_3d = !have_report && nb.rank < opt.max_3d_buildings;
-      bp = &nb;
-    } else {
-      bp = &page.buildings[found->second];
-    }
-    Building& b = *bp;
-    const json& battr = member(member(f.objects, f.id.c_str()), "attributes");
-    if (!b.from_report) {
-      if (b.status.empty() && member(battr, "morphcut_status").is_string()) {
-        b.status = member(battr, "morphcut_status").get<std::string>();
-        if (member(battr, "morphcut_reason").is_string())
-          b.reason = member(battr, "morphcut_reason").get<std::string>();
-        if (member(battr, "morphcut_hausdorff").is_number())
-          b.hausdorff = member(battr, "morphcut_hausdorff").get<double>();
-        const json& ps = member(battr, "morphcut_parts");
-        const json& ls = member(battr, "morphcut_levels");
-        if (ps.is_array() && ls.is_array())
-          for (size_t i = 0; i < std::min(ps.size(), ls.size()); ++i)
-            if (ps[i].is_number() && ls[i].is_number()) {
-              b.parts[ls[i].get<double>()] = ps[i].get<int>();
-              new_levels.insert(ls[i].get<double>());
-            }
-      }
-    }
-    // Parts: BuildingParts with morphcut_level, each level from the first file that has it.
-    for (auto it = f.objects.begin(); it != f.objects.end(); ++it) {
-      // (A per-level file also marks the Building itself with the level it shows.)
-      if (!member(it.value(), "type").is_string() ||
-          member(it.value(), "type").get<std::string>() != "BuildingPart")
-        continue;
-      const json& attr = member(it.value(), "attributes");
-      const json& level = member(attr, "morphcut_level");
-      if (!level.is_number()) continue;
-      const double t = level.get<double>();
-      const auto [lf, fresh] = b.level_file.try_emplace(t, file_index);
-      if (!fresh && lf->second != file_index) continue;
-      new_levels.insert(t);
-      const double volume = member(attr, "volume").is_number() ? member(attr, "volume").get<double>() : 0.0;
-      const double cvx =
-          member(attr, "convexity").is_number() ? member(attr, "convexity").get<double>() : kNaN;
-      const json& role = member(attr, "morphcut_role");
-      // The building's role: that of its largest part at the coarsest level.
-      if (role.is_string() && (!std::isfinite(b.role_level) || t > b.role_level ||
-                               (t == b.role_level && volume > b.role_volume))) {
-        b.role = role.get<std::string>();
-        b.role_level = t;
-        b.role_volume = volume;
-      }
-      auto& s = b.part_sums.try_emplace(t, std::array<double, 2>{0, 0}).first->second;
-      if (std::isfinite(cvx)) s[0] += volume, s[1] += volume * cvx;
-      if (!b.want_3d) continue;
-      if (!b.geo) b.geo = std::make_unique<Geometry>();
-      ojson faces = ojson::array();
-      for (const auto& rings : part_faces(it.value(), f.vertices)) b.geo->add_face(faces, rings);
-      const json& nb = member(attr, "neighbours");
-      ojson& lvl = b.geo->levels.try_emplace(t, ojson::array()).first->second;
-      lvl.push_back(ojson::array(
-          {member(attr, "morphcut_index").is_number() ? ojson(member(attr, "morphcut_index"))
-                                                      : ojson(lvl.size()),
-           rounded(volume, 1e-3), rounded(cvx, 1e-4), nb.is_array() ? nb.size() : 0,
-           role.is_string() ? ojson(role.get<std::string>()) : ojson(nullptr), it.key(), std::move(faces)}));
-    }
-    // The input ghost and footprint: the building's own geometry without morphcut parts.
-    if (!b.ghost_done) {
-      strip_previous_parts(f);
-      const mc::io::BuildingInput in = mc::io::extract_building(f, header, "highest");
-      if (!in.mesh.empty()) {
-        b.ghost_done = true;
-        set_footprint(b, in.mesh);
-        if (b.want_3d) {
-          if (!b.geo) b.geo = std::make_unique<Geometry>();
-          for (const Polygon& face : in.mesh.faces) {
-            std::vector<std::vector<Vec3>> rings;
-            for (const auto& r : face.rings) {
-              std::vector<Vec3> ring;
-              for (uint32_t i : r)
-                if (i < in.mesh.vertices.size()) ring.push_back(in.mesh.vertices[i]);
-              rings.push_back(std::move(ring));
-            }
-            b.geo->add_face(b.geo->ghost, rings);
-          }
-        }
-      }
-    }
+    Building& b = building_for(page, f.id, opt, have_report);
+    status_from_attributes(member(member(f.objects, f.id.c_str()), "attributes"), b, new_levels);
+    read_parts(f, file_index, b, new_levels);
+    read_ghost(f, header, b);
   }
   // Levels found only in the city files (no report, or other output levels).
   std::set<double> all(page.levels.begin(), page.levels.end());
