@@ -194,20 +194,15 @@ std::optional<double> number_attribute(const json& obj, const char* key) {
 }
 
 // Tiling of one building: counts per level, overlaps, volume sums.
-void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& parts, double scale,
-                  const ValidateOptions& opt, ValidationCounts& counts) {
-  std::vector<double> levels;  // in first-seen order
-  std::map<double, std::vector<size_t>> by_level;
-  for (size_t i = 0; i < parts.size(); ++i) {
-    if (!by_level.count(parts[i].level)) levels.push_back(parts[i].level);
-    by_level[parts[i].level].push_back(i);
-  }
+// The part counts the Building declares (morphcut_levels / morphcut_parts) against the parts the
+// file holds. A level output (docs/output-format.md) shows one level, named by the Building's
+// `morphcut_level`; a file without it holds every level's parts.
+void check_part_counts(ObjectReport& building, const json& bobj, const std::vector<double>& levels,
+                       const std::map<double, std::vector<size_t>>& by_level) {
   const json& attrs = bobj.contains("attributes") ? bobj["attributes"] : json::object();
   if (attrs.contains("morphcut_levels") && attrs.contains("morphcut_parts") &&
       attrs["morphcut_levels"].is_array() && attrs["morphcut_parts"].is_array() &&
       attrs["morphcut_levels"].size() == attrs["morphcut_parts"].size()) {
-    // A level output (docs/output-format.md) shows one level, named by the Building's
-    // `morphcut_level`; a file without it holds every level's parts.
     const std::optional<double> shown = number_attribute(bobj, "morphcut_level");
     std::vector<double> declared;
     for (size_t l = 0; l < attrs["morphcut_levels"].size(); ++l) {
@@ -217,7 +212,7 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
       declared.push_back(t);
       const size_t want =
           attrs["morphcut_parts"][l].is_number_unsigned() ? attrs["morphcut_parts"][l].get<size_t>() : 0;
-      const size_t have = by_level.count(t) ? by_level[t].size() : 0;
+      const size_t have = by_level.count(t) ? by_level.at(t).size() : 0;
       if (want != have)
         add(building, vc::kPartCountMismatch,
             "level " + num(t) + ": morphcut_parts says " + std::to_string(want) + ", the file has " +
@@ -230,49 +225,64 @@ void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& p
   } else {
     add(building, vc::kPartCountMismatch, "morphcut_levels / morphcut_parts missing or of different lengths");
   }
+}
 
+// Overlaps at one level: every pair of valid parts, as val3dity tests them (exact), or with a
+// volume tolerance when one is given.
+void check_overlaps(ObjectReport& building, std::vector<Part>& parts, const std::vector<size_t>& idx,
+                    double t, double scale, const ValidateOptions& opt, ValidationCounts& counts) {
+  for (size_t a = 0; a < idx.size(); ++a)
+    for (size_t b = a + 1; b < idx.size(); ++b) {
+      Part &pa = parts[idx[a]], &pb = parts[idx[b]];
+      if (!pa.check.closed_manifold || !pb.check.closed_manifold) continue;
+      std::optional<Common> common;
+      double tol = 0;
+      if (opt.overlap <= 0) {
+        if (!interiors_overlap(pa.check.shell, pb.check.shell, &counts.overlap_tests)) continue;
+        common = common_volume(pa.check.shell, pb.check.shell);
+        if (!common) common = Common{};  // the exact test found it; its size is unknown
+      } else {
+        // Apart by more than the 1 mm output grid: no common volume to compute.
+        if (hulls_separated(pa.check, pb.check, 1e-3)) continue;
+        ++counts.overlap_tests;
+        common = common_volume(pa.check.shell, pb.check.shell);
+        // Touching parts share faces whose vertices were rounded to the grid independently of
+        // how each part triangulates them: slivers up to the quantisation bound of the contact
+        // (at most the smaller surface) are touching, not overlap.
+        tol = opt.overlap + quantisation_bound(std::min(pa.check.area, pb.check.area), scale);
+        if (!common) {
+          add(building, vc::kOverlapNotComputed,
+              "level " + num(t) + ": the common volume of " + pa.id + " and " + pb.id +
+                  " could not be computed exactly");
+          continue;
+        }
+        if (common->volume <= tol) continue;
+      }
+      const std::string what =
+          " m³ in common" +
+          (common->area > 0 ? ", " + num(2 * common->volume / common->area) + " m thick on average" : "") +
+          (opt.overlap > 0 ? " (tolerance " + num(tol) + " m³)" : " (exact test)");
+      add(pa.report, vc::kPartsOverlap, "overlaps " + pb.id + ": " + num(common->volume) + what);
+      add(pb.report, vc::kPartsOverlap, "overlaps " + pa.id + ": " + num(common->volume) + what);
+    }
+}
+
+void check_tiling(ObjectReport& building, const json& bobj, std::vector<Part>& parts, double scale,
+                  const ValidateOptions& opt, ValidationCounts& counts) {
+  std::vector<double> levels;  // in first-seen order
+  std::map<double, std::vector<size_t>> by_level;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    if (!by_level.count(parts[i].level)) levels.push_back(parts[i].level);
+    by_level[parts[i].level].push_back(i);
+  }
+  check_part_counts(building, bobj, levels, by_level);
   const std::optional<double> cell = number_attribute(bobj, "morphcut_cell_volume");
   if (!cell) building.note = "no morphcut_cell_volume attribute: levels compared with each other only";
   std::optional<double> first_sum;
   double first_area = 0, first_level = 0;
   for (double t : levels) {
     const auto& idx = by_level[t];
-    // Overlaps: every pair of valid parts, as val3dity tests them (exact), or with a volume
-    // tolerance when one is given.
-    for (size_t a = 0; a < idx.size(); ++a)
-      for (size_t b = a + 1; b < idx.size(); ++b) {
-        Part &pa = parts[idx[a]], &pb = parts[idx[b]];
-        if (!pa.check.closed_manifold || !pb.check.closed_manifold) continue;
-        std::optional<Common> common;
-        double tol = 0;
-        if (opt.overlap <= 0) {
-          if (!interiors_overlap(pa.check.shell, pb.check.shell, &counts.overlap_tests)) continue;
-          common = common_volume(pa.check.shell, pb.check.shell);
-          if (!common) common = Common{};  // the exact test found it; its size is unknown
-        } else {
-          // Apart by more than the 1 mm output grid: no common volume to compute.
-          if (hulls_separated(pa.check, pb.check, 1e-3)) continue;
-          ++counts.overlap_tests;
-          common = common_volume(pa.check.shell, pb.check.shell);
-          // Touching parts share faces whose vertices were rounded to the grid independently of
-          // how each part triangulates them: slivers up to the quantisation bound of the contact
-          // (at most the smaller surface) are touching, not overlap.
-          tol = opt.overlap + quantisation_bound(std::min(pa.check.area, pb.check.area), scale);
-          if (!common) {
-            add(building, vc::kOverlapNotComputed,
-                "level " + num(t) + ": the common volume of " + pa.id + " and " + pb.id +
-                    " could not be computed exactly");
-            continue;
-          }
-          if (common->volume <= tol) continue;
-        }
-        const std::string what =
-            " m³ in common" +
-            (common->area > 0 ? ", " + num(2 * common->volume / common->area) + " m thick on average" : "") +
-            (opt.overlap > 0 ? " (tolerance " + num(tol) + " m³)" : " (exact test)");
-        add(pa.report, vc::kPartsOverlap, "overlaps " + pb.id + ": " + num(common->volume) + what);
-        add(pb.report, vc::kPartsOverlap, "overlaps " + pa.id + ": " + num(common->volume) + what);
-      }
+    check_overlaps(building, parts, idx, t, scale, opt, counts);
     // Volumes: only when every part of the level is a valid closed solid (else already reported).
     double sum = 0, area = 0;
     bool all_closed = true;
