@@ -101,7 +101,8 @@ std::pair<std::string, int> first_overlap(const std::vector<EncodedSolid>& solid
 EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
                           const std::vector<PartResult>& parts, const Preprocessed& pre,
                           const std::string& lod, const std::string& version, VertexPool& pool,
-                          bool conforming, bool separate = false, bool plain = false) {
+                          bool conforming, bool separate = false, bool plain = false,
+                          const std::vector<PolygonMesh>* level_meshes = nullptr) {
   EncodedLevel e;
   e.lv.index = i;
   e.lv.threshold = threshold;
@@ -112,7 +113,7 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   }
   double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
   std::vector<PolygonMesh> meshes;
-  if (conforming) meshes = level_part_meshes(pre, parts);
+  if (conforming) meshes = level_meshes ? *level_meshes : level_part_meshes(pre, parts);
   else
     for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
   if (separate) separate_near_touches(meshes, pool.step());
@@ -234,7 +235,11 @@ EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double 
                                   const std::vector<PartResult>& parts, const Preprocessed& pre,
                                   const std::string& lod, const std::string& version, VertexPool& pool) {
   const size_t mark = pool.mark();
-  EncodedLevel e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true, false, true);
+  // The conforming attempts encode the same part meshes: built once (level_part_meshes is a third
+  // of a level's encoding; a level that needs repairs is encoded up to five times here).
+  const std::vector<PolygonMesh> meshes = level_part_meshes(pre, parts);
+  EncodedLevel e =
+      encode_level(building, i, threshold, parts, pre, lod, version, pool, true, false, true, &meshes);
   if (e.defect.empty()) return e;
   double spent = e.check_seconds;  // every attempt's checks count
   const std::string first = e.defect;
@@ -243,7 +248,7 @@ EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double 
     for (int steps : {1, 2, 4}) {
       pool.rollback(mark);
       pool.cluster(steps, mark);
-      e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true);
+      e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true, false, false, &meshes);
       pool.cluster(0, 0);
       spent += e.check_seconds;
       e.check_seconds = spent;
@@ -254,7 +259,8 @@ EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double 
     }
   // Vertices a fraction of a step from a face of their part moved away from it (part_merge.hpp).
   pool.rollback(mark);
-  e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true, /*separate=*/true);
+  e = encode_level(building, i, threshold, parts, pre, lod, version, pool, true, /*separate=*/true, false,
+                   &meshes);
   spent += e.check_seconds;
   e.check_seconds = spent;
   if (e.defect.empty()) {
