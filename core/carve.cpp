@@ -331,10 +331,9 @@ struct CarveScale {
 // first `vote_batch` points beyond the band decide all of those by majority. False (nothing
 // counted) when the surface does enter the cell. Reentrant (the two children of a split are
 // voted at once).
-bool band_vote(const CellComplex& cx, uint32_t c, const BBox& box, const std::vector<Vec3>& pts,
+bool band_vote(const std::vector<Plane>& outward, const BBox& box, const std::vector<Vec3>& pts,
                uint64_t first_id, const CarveParams& p, const PointClassifier& classify, size_t& in,
                size_t& points) {
-  const std::vector<Plane> outward = outward_planes(cx, c);
   if (p.surface_enters(outward, box)) return false;
   std::vector<Vec3> voted;
   std::vector<uint64_t> ids;
@@ -378,12 +377,15 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
   const auto pts = sample_cell(
       cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
   size_t in = 0;
+  // The cell's outward facet planes, for the band's and the regions' tests alike.
+  const std::vector<Plane> outward = !free_cell && p.vote_batch > 0 && (p.surface_enters || p.regions)
+                                         ? outward_planes(cx, c)
+                                         : std::vector<Plane>{};
   const bool grazed = !free_cell && p.surface_enters && p.vote_batch > 0 &&
-                      band_vote(cx, c, box, pts, first_id, p, classify, in, points);
+                      band_vote(outward, box, pts, first_id, p, classify, in, points);
   if (!grazed && !free_cell && p.regions && p.vote_batch > 0) {
     in = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
-                     p.regions->entering(outward_planes(cx, c), box, k.hair), k.hair, p.oracle_box, classify,
-                     points);
+                     p.regions->entering(outward, box, k.hair), k.hair, p.oracle_box, classify, points);
   } else if (!grazed) {
     std::vector<uint64_t> ids(pts.size());
     std::vector<uint8_t> flags;

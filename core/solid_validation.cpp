@@ -1018,41 +1018,6 @@ bool hull_facet_separates(const std::vector<Vec3>& a, const std::vector<Vec3>& b
 
 }  // namespace
 
-namespace {
-
-// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
-double point_triangle_distance2(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return dot(ap, ap);
-  const Vec3 bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return dot(bp, bp);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const Vec3 q = a + ab * (d1 / (d1 - d3));
-    return dot(p - q, p - q);
-  }
-  const Vec3 cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return dot(cp, cp);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const Vec3 q = a + ac * (d2 / (d2 - d6));
-    return dot(p - q, p - q);
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const Vec3 q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    return dot(p - q, p - q);
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  const Vec3 q = a + ab * (vb * denom) + ac * (vc * denom);
-  return dot(p - q, p - q);
-}
-
-}  // namespace
-
 bool min_distance_beyond(const TriangleShell& a, const TriangleShell& b, double d) {
   std::vector<Vec3> mine = b.points;
   std::sort(mine.begin(), mine.end(),
@@ -1063,8 +1028,10 @@ bool min_distance_beyond(const TriangleShell& a, const TriangleShell& b, double 
           return std::tie(u.x, u.y, u.z) < std::tie(v.x, v.y, v.z);
         }))
       continue;  // a vertex of both: on the common surface
-    for (const auto& t : b.triangles)
-      if (point_triangle_distance2(p, b.points[t[0]], b.points[t[1]], b.points[t[2]]) <= d2) return false;
+    for (const auto& t : b.triangles) {
+      const Vec3 q = p - closest_on_triangle(p, b.points[t[0]], b.points[t[1]], b.points[t[2]]);
+      if (dot(q, q) <= d2) return false;
+    }
   }
   return true;
 }
