@@ -326,6 +326,19 @@ struct CarveScale {
   BBox outer;         // the root cell's box
 };
 
+// A cell's label and inconsistent volume from its inside share `r` (volume `v`, box `box`).
+CellVote score_vote(double r, double v, const BBox& box, const CarveParams& p, const CarveScale& k) {
+  CellVote out;
+  out.inside = r > p.inside_vote;
+  out.score = out.inside ? v * (1 - r) : v * r;
+  // An inside cell reaching more than δ out of the oracle's box has air in it for sure (beyond
+  // the box everything is outside), however few of its points fell there (a sliver hanging out
+  // of an open bottom): it stays in the queue for the open-bottom cap plane.
+  if (out.inside && p.oracle_box.valid() && !p.oracle_box.contains(box, p.dist))
+    out.score = std::max(out.score, 2 * p.inconsistency * k.unit);
+  return out;
+}
+
 // A valid solid's cell that the surface only grazes (CarveParams::surface_enters): the points in
 // the band along its facets are voted as in a full vote (same ids, so the same labels), and the
 // first `vote_batch` points beyond the band decide all of those by majority. False (nothing
@@ -371,9 +384,26 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
                    const CarveScale& k, const PointClassifier& classify, size_t& points) {
   const double v = cx.cell_volume(c);
   const long n = std::clamp<long>(static_cast<long>(std::ceil(v / k.unit)), p.min_points, p.max_points);
+  const bool touched = !p.surface_touches || p.vote_batch <= 0 || p.surface_touches(box);
+  if (p.inside_volume && touched) {
+    ConvexPolytope poly;
+    for (uint32_t f : cx.cell(c).facets) {
+      for (uint32_t vid : cx.outward_loop(f, c)) poly.points.push_back(cx.point(vid));
+      poly.close_face();
+    }
+    if (const double inside = p.inside_volume(poly, box); inside >= 0) {
+      double r = v > 0 ? std::clamp(inside / v, 0.0, 1.0) : 0.0;
+      // The carving resolves what a vote of n points resolves, no finer: a mislabelled share
+      // below one point's (1/n) counts as none. Finer shares are the input faces' fitting noise
+      // along the cell's facets; splitting for them multiplies cells, not accuracy
+      // (docs/design.md "Inside volume by columns").
+      if (std::min(r, 1 - r) * static_cast<double>(n) < 1) r = r > p.inside_vote ? 1.0 : 0.0;
+      return score_vote(r, v, box, p, k);
+    }
+  }
   const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
   const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
-  const bool free_cell = p.surface_touches && p.vote_batch > 0 && !p.surface_touches(box);
+  const bool free_cell = !touched;
   const auto pts = sample_cell(
       cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
   size_t in = 0;
@@ -395,16 +425,7 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
     points += pts.size();
     if (free_cell) in = 2 * in > pts.size() ? pts.size() : 0;  // unanimous by construction
   }
-  const double r = pts.empty() ? 0.0 : double(in) / pts.size();
-  CellVote out;
-  out.inside = r > p.inside_vote;
-  out.score = out.inside ? v * (1 - r) : v * r;
-  // An inside cell reaching more than δ out of the oracle's box has air in it for sure (beyond
-  // the box everything is outside), however few of its points fell there (a sliver hanging out
-  // of an open bottom): it stays in the queue for the open-bottom cap plane.
-  if (out.inside && p.oracle_box.valid() && !p.oracle_box.contains(box, p.dist))
-    out.score = std::max(out.score, 2 * p.inconsistency * k.unit);
-  return out;
+  return score_vote(pts.empty() ? 0.0 : double(in) / pts.size(), v, box, p, k);
 }
 
 // The plane that cuts a queued cell: the largest remaining region plane that really crosses it.

@@ -1,9 +1,10 @@
 // Iterative, inconsistency-guided space carving (docs/algorithm.md §7).
 //
 // The padded bounding box is split by the building's region planes, largest first; each cell is
-// labelled inside/outside by voting over sample points with the ray-casting oracle, and cells
-// whose vote is not unanimous (their "inconsistent volume") are split further while planes that
-// really cross them remain. Departures from the research code, each for robustness:
+// labelled inside/outside by voting over sample points with the ray-casting oracle (a valid
+// solid's touched cells by their exact inside volume instead), and cells whose vote is not
+// unanimous (their "inconsistent volume") are split further while planes that really cross them
+// remain. Departures from the research code, each for robustness:
 //  - a plane is offered to a cell only if some vertex lies more than δ on each side (no slivers)
 //    and the region's bounding box (grown by 3δ) overlaps the cell's;
 //  - sample points are quasi-random (R3 sequence) and uniform in a fan tetrahedralisation;
@@ -14,6 +15,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/column_volume.hpp"
 #include "core/complex.hpp"
 #include "core/surface_index.hpp"
 
@@ -50,6 +52,11 @@ struct CarveParams {
   // points each) instead of point by point. Only for an oracle that is constant where the
   // surface does not pass (the parity vote).
   const SurfaceIndex* regions = nullptr;
+  // For a valid solid: the volume of a convex cell (its outward facet loops and box) inside the
+  // input surface, exact up to rounding (core/column_volume.hpp), or < 0 when it would cost more
+  // than a vote (a large cell under many triangles). When set, a cell the surface touches is
+  // labelled by it instead of by sample points; untouched cells keep their few points.
+  std::function<double(const ConvexPolytope&, const BBox&)> inside_volume;
   uint64_t seed = 1;
 };
 

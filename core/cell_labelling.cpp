@@ -12,6 +12,10 @@ namespace mc {
 namespace {
 // The volume agreement open models are held to (docs/algorithm.md §6.5; the open variants' 2 %).
 constexpr double kOpenRelabel = 0.02;
+// The most triangles a cell's exact inside volume sums over (about four plane clips each); a
+// larger cell under a larger roof is voted, which costs less there (docs/design.md "Inside volume
+// by columns").
+constexpr size_t kMaxColumns = 256;
 }  // namespace
 
 struct CellLabeller::Oracles {
@@ -20,6 +24,7 @@ struct CellLabeller::Oracles {
   std::unique_ptr<InsideOracle> parity;
   std::unique_ptr<VerticalOracle> vertical_input, all_surfaces, vertical_floors;
   std::unique_ptr<SurfaceIndex> index;
+  std::unique_ptr<ColumnVolume> columns;  // a valid solid's exact inside volumes
   CarveParams carve;
   const VerticalOracle& vertical() const { return vertical_floors ? *vertical_floors : *vertical_input; }
 };
@@ -36,6 +41,7 @@ CellLabeller::CellLabeller(const InputFrame& in, const TriangleSoup& oracle_tris
   o.parity = std::make_unique<InsideOracle>(*o.soup, p.oracle_rays, p.seed);
   fast.decide(out);
   o.parity->set_valid_solid(out.fast_path);
+  if (out.fast_path && p.column_volumes) o.columns = std::make_unique<ColumnVolume>(*o.soup);
   o.parity->set_merge_distance(out.dist);
   o.parity->set_enclosure(p.fill_enclosed);
   const std::vector<uint8_t> cover = cover_triangles(*o.soup, omesh);
@@ -112,6 +118,14 @@ Labelling CellLabeller::label(bool use_vertical, Clock::time_point deadline) con
       return index.enters(outward, b, hair);
     };
     c.band = out_.dist;
+  }
+  // A valid solid's touched cells are labelled by their exact inside volume (docs/design.md
+  // "Inside volume by columns"): no sample point near the surface, no seed.
+  if (o.columns && !use_vertical) {
+    const ColumnVolume& columns = *o.columns;
+    c.inside_volume = [&columns](const ConvexPolytope& cell, const BBox& b) {
+      return columns.inside(cell, b, kMaxColumns);
+    };
   }
   const InsideOracle& parity = *o.parity;
   l.carve = carve(

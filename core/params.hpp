@@ -49,6 +49,10 @@ struct PreprocessParams {
   // that no triangle touches are decided by a few points each (docs/design.md "Regions, not
   // points"). Not a configuration key: tests and benchmarks compare with the point-by-point vote.
   bool region_votes = true;
+  // With the fast path, a cell the surface touches is labelled by its exact inside volume (the
+  // surface's columns over it, core/column_volume.hpp) instead of sample points (docs/design.md
+  // "Inside volume by columns"). Not a configuration key: tests compare with the votes.
+  bool column_volumes = true;
   // Points the parity vote calls outside but that no ray (horizon to zenith) escapes from are
   // inside: storeys whose floors are modelled as sheets inside the solid (core/oracle.hpp).
   bool fill_enclosed = true;
