@@ -282,9 +282,18 @@ EncodedLevel encode_parts_on_grid(const std::string& building, size_t i, double 
 
 }  // namespace
 
+namespace {
+// The most parts a level may lose to merges: a few (a sub-grid feature between two parts), not a
+// level (a defect shared by many parts around one point, which each merge moves to the next
+// part: the tile's wall-less variant merged 192 of 248 parts, re-encoding the level each time).
+// Beyond it the level falls back, with its reason (docs/output-format.md §Repairs, step 6).
+size_t max_merges(size_t parts) { return std::max<size_t>(4, parts / 16); }
+}  // namespace
+
 // encode_parts_on_grid, then, while a part still fails, that part merged into the neighbour it
 // shares the largest face with and the level encoded again (output/part_merge.hpp): a level of
-// fewer parts rather than another level. On failure the first defect is reported.
+// fewer parts rather than another level, up to max_merges. On failure the first defect is
+// reported.
 EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double threshold,
                                   const std::vector<PartResult>& parts, const Preprocessed& pre,
                                   const std::string& lod, const std::string& version, VertexPool& pool) {
@@ -293,7 +302,8 @@ EncodedLevel encode_level_on_grid(const std::string& building, size_t i, double 
   const EncodedLevel first = e;
   double spent = e.check_seconds;
   std::vector<PartResult> current = parts;
-  for (size_t merges = 1; current.size() > 1 && e.failed_part >= 0; ++merges) {
+  for (size_t merges = 1; merges <= max_merges(parts.size()) && current.size() > 1 && e.failed_part >= 0;
+       ++merges) {
     const int k = largest_neighbour(level_part_meshes(pre, current), static_cast<size_t>(e.failed_part));
     if (k < 0) break;
     current = merge_parts(current, static_cast<size_t>(e.failed_part), static_cast<size_t>(k), pre);

@@ -34,10 +34,10 @@ BBox box_of(const ConvexPolytope& p) {
 // A gable house: footprint [0,10]×[0,6], eaves at 4 m, ridge along x at y = 3, 7 m; 330 m³.
 TriangleSoup gable() {
   TriangleSoup s;
-  s.vertices = {{0, 0, 0}, {10, 0, 0}, {10, 6, 0}, {0, 6, 0}, {0, 0, 4},
-                {10, 0, 4}, {10, 6, 4}, {0, 6, 4}, {0, 3, 7}, {10, 3, 7}};
-  const std::vector<std::vector<uint32_t>> faces = {{0, 3, 2, 1}, {0, 1, 5, 4},    {2, 3, 7, 6},   {4, 5, 9, 8},
-                                                    {6, 7, 8, 9}, {0, 4, 8, 7, 3}, {1, 2, 6, 9, 5}};
+  s.vertices = {{0, 0, 0},  {10, 0, 0}, {10, 6, 0}, {0, 6, 0}, {0, 0, 4},
+                {10, 0, 4}, {10, 6, 4}, {0, 6, 4},  {0, 3, 7}, {10, 3, 7}};
+  const std::vector<std::vector<uint32_t>> faces = {
+      {0, 3, 2, 1}, {0, 1, 5, 4}, {2, 3, 7, 6}, {4, 5, 9, 8}, {6, 7, 8, 9}, {0, 4, 8, 7, 3}, {1, 2, 6, 9, 5}};
   for (const auto& f : faces)
     for (size_t i = 1; i + 1 < f.size(); ++i) s.triangles.push_back({f[0], f[i], f[i + 1]});
   s.source_face.assign(s.triangles.size(), 0);
@@ -84,18 +84,18 @@ TEST(ConvexPolytope, VolumeAndClipByAPlane) {
 TEST(ColumnVolume, GableHouseCellsKnownInClosedForm) {
   const ColumnVolume cv(gable());
   EXPECT_NEAR(inside(cv, box({-1, -1, -1}, {11, 7, 9})), 330, 1e-9);
-  EXPECT_NEAR(inside(cv, box({0, 0, 0}, {10, 3, 10})), 165, 1e-9);  // half along the ridge line
-  EXPECT_NEAR(inside(cv, box({-1, -1, 5}, {11, 7, 10})), 40, 1e-9);   // the roof above 5 m
-  EXPECT_NEAR(inside(cv, box({0, 0, 5}, {10, 3, 10})), 20, 1e-9);     // its half: ridge on a facet
-  EXPECT_NEAR(inside(cv, box({2, 1, 1}, {3, 2, 2})), 1, 1e-12);       // deep inside
+  EXPECT_NEAR(inside(cv, box({0, 0, 0}, {10, 3, 10})), 165, 1e-9);   // half along the ridge line
+  EXPECT_NEAR(inside(cv, box({-1, -1, 5}, {11, 7, 10})), 40, 1e-9);  // the roof above 5 m
+  EXPECT_NEAR(inside(cv, box({0, 0, 5}, {10, 3, 10})), 20, 1e-9);    // its half: ridge on a facet
+  EXPECT_NEAR(inside(cv, box({2, 1, 1}, {3, 2, 2})), 1, 1e-12);      // deep inside
 }
 
 TEST(ColumnVolume, CellsSharingTheSurfacesFacesAreExact) {
   const ColumnVolume cv(gable());
-  EXPECT_NEAR(inside(cv, box({0, 0, 0}, {10, 6, 4})), 240, 1e-9);  // walls: every facet on a face or eave
-  EXPECT_NEAR(inside(cv, box({0, 0, -3}, {10, 6, 0})), 0, 1e-9);   // under the ground face
-  EXPECT_NEAR(inside(cv, box({2, -2, 0}, {4, 0, 4})), 0, 1e-9);    // against a wall outside
-  EXPECT_NEAR(inside(cv, box({-5, -5, 7}, {15, 15, 9})), 0, 1e-9); // on the ridge's height
+  EXPECT_NEAR(inside(cv, box({0, 0, 0}, {10, 6, 4})), 240, 1e-9);   // walls: every facet on a face or eave
+  EXPECT_NEAR(inside(cv, box({0, 0, -3}, {10, 6, 0})), 0, 1e-9);    // under the ground face
+  EXPECT_NEAR(inside(cv, box({2, -2, 0}, {4, 0, 4})), 0, 1e-9);     // against a wall outside
+  EXPECT_NEAR(inside(cv, box({-5, -5, 7}, {15, 15, 9})), 0, 1e-9);  // on the ridge's height
 }
 
 TEST(ColumnVolume, OrientationOfTheSurfaceDoesNotMatter) {

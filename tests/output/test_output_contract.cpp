@@ -390,6 +390,29 @@ TEST(PartRepair, RingsAreCleanedAsVal3ditySeesThem) {
   expect_written_parts_valid(b.feature);
 }
 
+// A 3D BAG building of the tile on a 1 cm grid (tools/gen_world_variants.py stress, variant "cm";
+// the building alone in tests/pipeline/data). Rounding pinches every part around one point, and
+// merging the failed part into its largest neighbour moves the failure to the next part: its
+// level 0.01 merged 19 of its 20 parts into one. A level may lose at most max(4, parts/16) parts
+// to merges (docs/output-format.md §Repairs, step 6) and falls back beyond, with its reason.
+TEST(PartRepair, MergesStopBeforeTheyEatTheLevel) {
+  const BuildingOutcome b = run_the_building("3dbag_cm_grid_25100.city.json");
+  ASSERT_TRUE(b.status == "ok" || b.status == "partial") << b.reason;
+  ASSERT_EQ(b.levels.size(), 4u);
+  size_t fell_back = 0;
+  for (const auto& l : b.levels) {
+    SCOPED_TRACE(l.threshold);
+    fell_back += !l.fallback.empty();
+    size_t merges = 0;
+    if (l.grid_repair.rfind("merged ", 0) == 0) merges = std::stoul(l.grid_repair.substr(7));
+    const size_t before = l.parts + merges;  // the level's parts before its merges
+    EXPECT_LE(merges, std::max<size_t>(4, before / 16)) << l.grid_repair;
+  }
+  EXPECT_GT(fell_back, 0u);
+  EXPECT_EQ(b.status, "partial");
+  expect_written_parts_valid(b.feature);
+}
+
 // A 3D BAG building of the tile with its party walls removed (variant (a), seed 19; the building
 // alone in tests/pipeline/data). At three levels one part needed a face repair that rewrote a face
 // it shares with a neighbour, and the neighbour kept its own copy: val3dity, triangulating each copy
