@@ -58,7 +58,8 @@ void add_cap(std::vector<Vec3>& pts, const Vec3& n, double eps, ConvexPolytope& 
   const size_t begin = out.points.size();
   for (const auto& [angle, q] : by_angle)
     if (out.points.size() == begin || norm(q - out.points.back()) > eps) out.points.push_back(q);
-  while (out.points.size() > begin + 1 && norm(out.points[begin] - out.points.back()) <= eps) out.points.pop_back();
+  while (out.points.size() > begin + 1 && norm(out.points[begin] - out.points.back()) <= eps)
+    out.points.pop_back();
   out.close_face();
 }
 
@@ -115,7 +116,7 @@ ColumnVolume::ColumnVolume(const TriangleSoup& soup) {
     Vec3 a = soup.vertices[t[0]], b = soup.vertices[t[1]], c = soup.vertices[t[2]];
     const Vec3 nrm = cross(b - a, c - a);
     if (!(std::abs(nrm.z) > 1e-12 * norm(nrm))) continue;  // vertical (or degenerate): no column
-    if (nrm.z < 0) std::swap(b, c);                          // counter-clockwise in plan
+    if (nrm.z < 0) std::swap(b, c);                        // counter-clockwise in plan
     Column col{a, b, c, nrm.z * orientation > 0 ? 1.0 : -1.0, {}};
     col.box.add(a);
     col.box.add(b);
