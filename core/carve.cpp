@@ -376,31 +376,37 @@ bool band_vote(const std::vector<Plane>& outward, const BBox& box, const std::ve
   return true;
 }
 
+// A valid solid's touched cell labelled by its exact inside volume (CarveParams::inside_volume,
+// docs/design.md "Inside volume by columns"); nothing when that would cost more than its vote.
+// The carving resolves what a vote of n points resolves, no finer: a mislabelled share below one
+// point's (1/n) counts as none. Finer shares are the input faces' fitting noise along the cell's
+// facets; splitting for them multiplies cells, not accuracy.
+std::optional<CellVote> measured_vote(const CellComplex& cx, uint32_t c, const BBox& box, double v, long n,
+                                      const CarveParams& p, const CarveScale& k) {
+  ConvexPolytope poly;
+  for (uint32_t f : cx.cell(c).facets) {
+    for (uint32_t vid : cx.outward_loop(f, c)) poly.points.push_back(cx.point(vid));
+    poly.close_face();
+  }
+  const double inside = p.inside_volume(poly, box);
+  if (inside < 0) return std::nullopt;
+  double r = v > 0 ? std::clamp(inside / v, 0.0, 1.0) : 0.0;
+  if (std::min(r, 1 - r) * static_cast<double>(n) < 1) r = r > p.inside_vote ? 1.0 : 0.0;
+  return score_vote(r, v, box, p, k);
+}
+
 // Votes one cell (`box`: its vertices' box). A cell the input surface does not touch is entirely
-// inside or outside: a few points (majority) decide it. A cell it only grazes is voted in a band
-// along its facets; any other is voted by regions (parity) or point by point. Reentrant for
-// distinct cells whose volume and centroid are measured (CellComplex caches them lazily).
+// inside or outside: a few points (majority) decide it. A valid solid's touched cell is measured
+// (measured_vote); else a cell the surface only grazes is voted in a band along its facets; any
+// other is voted by regions (parity) or point by point. Reentrant for distinct cells whose volume
+// and centroid are measured (CellComplex caches them lazily).
 CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const CarveParams& p,
                    const CarveScale& k, const PointClassifier& classify, size_t& points) {
   const double v = cx.cell_volume(c);
   const long n = std::clamp<long>(static_cast<long>(std::ceil(v / k.unit)), p.min_points, p.max_points);
   const bool touched = !p.surface_touches || p.vote_batch <= 0 || p.surface_touches(box);
-  if (p.inside_volume && touched) {
-    ConvexPolytope poly;
-    for (uint32_t f : cx.cell(c).facets) {
-      for (uint32_t vid : cx.outward_loop(f, c)) poly.points.push_back(cx.point(vid));
-      poly.close_face();
-    }
-    if (const double inside = p.inside_volume(poly, box); inside >= 0) {
-      double r = v > 0 ? std::clamp(inside / v, 0.0, 1.0) : 0.0;
-      // The carving resolves what a vote of n points resolves, no finer: a mislabelled share
-      // below one point's (1/n) counts as none. Finer shares are the input faces' fitting noise
-      // along the cell's facets; splitting for them multiplies cells, not accuracy
-      // (docs/design.md "Inside volume by columns").
-      if (std::min(r, 1 - r) * static_cast<double>(n) < 1) r = r > p.inside_vote ? 1.0 : 0.0;
-      return score_vote(r, v, box, p, k);
-    }
-  }
+  if (p.inside_volume && touched)
+    if (std::optional<CellVote> measured = measured_vote(cx, c, box, v, n, p, k)) return *measured;
   const uint64_t seed = p.seed ^ (uint64_t(c) << 20);
   const uint64_t first_id = (uint64_t(c) << 24) ^ p.seed;
   const bool free_cell = !touched;
