@@ -132,8 +132,9 @@ struct MassingParams {
   double mass_convexity = 0.95;        // and together are about as convex as one part (V / V_hull)
   double mass_shared_fraction = 0.5;   // and share a vertical face >= this x min height x min width
   double roof_max_wall_share =
-      0.35;                      // a raised piece with fewer own walls than this, resting on a part, is roof
-  double roof_min_cover = 0.25;  // or covering this share of the footprint of the part it rests on
+      0.35;                       // a raised piece with fewer own walls than this, resting on a part, is roof
+  double roof_min_cover = 0.25;   // or covering this share of the footprint of the part it rests on
+  double storey_min_cover = 0.9;  // a body covered this much by one mass on it is that mass's storey
 };
 
 struct Params {

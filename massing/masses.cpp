@@ -49,12 +49,28 @@ std::vector<Vec3> vertices_of(const std::vector<uint32_t>& members, const std::v
   return v;
 }
 
+// A façade zone: a grounded strip under twice thin_width wide, at least three times as long, lining
+// a larger part along its long side (a vertical face shared over half its length x height) up to
+// more than half that part's height: a gallery, a zone of bays, a façade layer thicker than a skin.
+// A low strip along a wall (a lean-to) is an annex; a raised one, a storey of what it stands on.
+bool facade_zone(const PartMassing& pm, const std::vector<PartMassing>& P, const MassingParams& p) {
+  if (!pm.grounded || !(pm.width < 2 * p.thin_width) || pm.length < 3 * pm.width) return false;
+  for (const Contact& c : pm.contacts) {
+    const PartMassing& o = P[c.other];
+    if (c.kind == "side" && c.area >= 0.5 * pm.length * height(pm) &&
+        o.footprint_area >= 2 * pm.footprint_area && pm.z_max > (o.z_min + o.z_max) / 2)
+      return true;
+  }
+  return false;
+}
+
 // Step 1: what kind of piece each part is.
 void classify_pieces(std::vector<PartMassing>& P, const MassingParams& p) {
   const size_t n = P.size();
   for (auto& pm : P) {
     pm.piece = "body";
-    if (n > 1 && pm.width < p.thin_width && !pm.contacts.empty()) pm.piece = "layer";
+    if (n > 1 && !pm.contacts.empty() && (pm.width < p.thin_width || facade_zone(pm, P, p)))
+      pm.piece = "layer";
     else if (roof_piece(pm, P, p)) pm.piece = "roof";
   }
 }
@@ -63,22 +79,28 @@ void classify_pieces(std::vector<PartMassing>& P, const MassingParams& p) {
 // tolerance and (a) bottoms apart: a piece standing on something lower, flush with the top of the
 // body beside it (an overhang, an upper storey over an annex); or bottoms within the tolerance too
 // and (b) one flat roof, every piece flat-topped, or (c) together about as convex as one part.
+// With `through_layers` (step 5), the masses grown so far are joined by the same tests, their
+// layers counting as contacts: two blocks of one height with a façade zone between them.
 void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMesh>& meshes,
-                 const MassingParams& p, UnionFind& uf) {
+                 const MassingParams& p, UnionFind& uf, bool through_layers) {
   const uint32_t n = static_cast<uint32_t>(P.size());
   std::vector<std::vector<uint32_t>> members(n);
-  for (uint32_t i = 0; i < n; ++i) members[i] = {i};
+  for (uint32_t i = 0; i < n; ++i) members[uf.find(i)].push_back(i);
+  auto joins = [&](const PartMassing& a) {
+    return a.piece == "body" || (through_layers && a.piece == "layer");
+  };
   std::vector<std::tuple<double, uint32_t, uint32_t>> pairs;
   for (uint32_t i = 0; i < n; ++i)
     for (const Contact& c : P[i].contacts)
-      if (c.other > i && c.kind == "side" && P[i].piece == "body" && P[c.other].piece == "body" &&
+      if (c.other > i && c.kind == "side" && joins(P[i]) && joins(P[c.other]) &&
           c.area >= p.mass_shared_fraction * std::min(height(P[i]), height(P[c.other])) *
                         std::min(P[i].width, P[c.other].width))
         pairs.emplace_back(-c.area, i, c.other);
   std::sort(pairs.begin(), pairs.end());
-  auto z_range = [&](const std::vector<uint32_t>& m) {
+  auto z_range = [&](const std::vector<uint32_t>& m) {  // of the mass's shape: its layers are skins
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (uint32_t k : m) lo = std::min(lo, P[k].z_min), hi = std::max(hi, P[k].z_max);
+    for (uint32_t k : m)
+      if (P[k].piece != "layer") lo = std::min(lo, P[k].z_min), hi = std::max(hi, P[k].z_max);
     return std::pair{lo, hi};
   };
   auto one_volume = [&](const std::vector<uint32_t>& joint, bool same_top, bool same_bottom) {
@@ -110,7 +132,8 @@ void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMes
 }
 
 // Step 3: roof pieces join the mass they rest on (lowest first, so a piece on a piece follows it
-// down). Step 4: layers join the non-layer neighbour they share most with (else any neighbour).
+// down). Step 4: layers join the non-layer neighbour they share most wall with (side contacts
+// first, then any contact, then a layer).
 void attach_roofs_and_layers(const std::vector<PartMassing>& P, UnionFind& uf) {
   const uint32_t n = static_cast<uint32_t>(P.size());
   std::vector<uint32_t> order(n);
@@ -121,13 +144,51 @@ void attach_roofs_and_layers(const std::vector<PartMassing>& P, UnionFind& uf) {
     if (P[i].piece == "roof") uf.link(uf.find(resting_on(P[i])->other), uf.find(i));
   for (uint32_t i = 0; i < n; ++i) {
     if (P[i].piece != "layer") continue;
-    const Contact* best = nullptr;
-    for (bool any : {false, true}) {
+    const Contact* best = nullptr;  // side contacts first: a layer leans on a wall, it stands on a roof
+    for (int pass = 0; pass < 4 && !best; ++pass)
       for (const Contact& c : P[i].contacts)
-        if ((any || P[c.other].piece != "layer") && (!best || c.area > best->area)) best = &c;
-      if (best) break;
-    }
+        if ((pass % 2 || P[c.other].piece != "layer") && (pass >= 2 || c.kind == "side") &&
+            (!best || c.area > best->area))
+          best = &c;
     if (best) uf.link(uf.find(best->other), uf.find(i));
+  }
+}
+
+// Step 6: storeys of one volume. A mass whose top is covered by one mass standing on it (the
+// stacked contacts between them sum to storey_min_cover of the lower mass's footprint) is the lower
+// storey of that mass, not a base under a setback: a block cut horizontally at a floor, an upper
+// floor overhanging the one below. Masses of the highest bodies first, so a stack of storeys joins
+// from the top down.
+void join_storeys(const std::vector<PartMassing>& P, const MassingParams& p, UnionFind& uf) {
+  const uint32_t n = static_cast<uint32_t>(P.size());
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return P[a].z_min > P[b].z_min; });
+  std::vector<std::vector<uint32_t>> members(n);
+  for (uint32_t k = 0; k < n; ++k) members[uf.find(k)].push_back(k);
+  for (uint32_t i : order) {
+    if (P[i].piece != "body") continue;
+    const uint32_t low = uf.find(i);
+    double footprint = 0;              // the lower mass's plan: its parts less their stacking
+    std::map<uint32_t, double> cover;  // mass root -> its area standing on the lower mass
+    for (uint32_t k : members[low]) {
+      footprint += P[k].footprint_area;
+      for (const Contact& c : P[k].contacts)
+        if (c.kind == "stacked" && c.above == -1) {
+          const uint32_t up = uf.find(c.other);
+          if (up == low) footprint -= c.area;
+          else cover[up] += c.area;
+        }
+    }
+    for (const auto& [up, area] : cover)
+      if (footprint > 0 && area >= p.storey_min_cover * footprint) {
+        uf.link(up, low);
+        const uint32_t r = uf.find(low), other = r == low ? up : low;
+        members[r].insert(members[r].end(), members[other].begin(), members[other].end());
+        members[other].clear();
+        break;
+      }
   }
 }
 
@@ -186,8 +247,10 @@ void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, doubl
   if (L.parts.empty()) return;
   classify_pieces(L.parts, p);
   UnionFind uf(static_cast<uint32_t>(L.parts.size()));
-  join_bodies(L.parts, meshes, p, uf);
+  join_bodies(L.parts, meshes, p, uf, false);
   attach_roofs_and_layers(L.parts, uf);
+  join_bodies(L.parts, meshes, p, uf, true);
+  join_storeys(L.parts, p, uf);
   measure_masses(L, meshes, ground, p, uf);
   mass_contacts(L);
 }

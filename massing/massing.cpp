@@ -38,6 +38,15 @@ Vec3 vector_area(const PolygonMesh& m, const std::vector<uint32_t>& ring) {
 }
 
 // Area and unit normal of a face with holes (the outer ring's orientation).
+// A face at the top of its part: its outer ring within `depth` below z_max (a flat roof, not a
+// step or a low terrace).
+bool top_face(const PolygonMesh& m, const Polygon& f, double z_max, double depth) {
+  if (f.rings.empty()) return false;
+  for (uint32_t v : f.rings[0])
+    if (m.vertices[v].z < z_max - depth) return false;
+  return true;
+}
+
 std::pair<double, Vec3> face_area(const PolygonMesh& m, const Polygon& f) {
   if (f.rings.empty()) return {0, {}};
   const Vec3 outer = vector_area(m, f.rings[0]);
@@ -174,10 +183,11 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
     // Contacts: shared faces by neighbour and kind.
     std::map<uint32_t, KindAreas> acc;  // other -> kind -> (area, signed area with this part above)
     double own = 0, walls = 0;          // the part's own faces' area, and its walls'
-    double flat_up = 0;                 // horizontal upward faces' area
+    double flat_up = 0;                 // horizontal upward faces' area in the top quarter
+    const double top_depth = std::max(p.mass_height_tolerance, (pm.z_max - pm.z_min) / 4);
     for (const Polygon& f : m.faces) {
       const auto [area, nrm] = face_area(m, f);
-      if (nrm.z >= stacked_cos) flat_up += area;
+      if (nrm.z >= stacked_cos && top_face(m, f, pm.z_max, top_depth)) flat_up += area;
       if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j) {
         own += area;
         if (std::abs(nrm.z) <= side_sin) walls += area;

@@ -44,7 +44,8 @@ struct PartMassing {
   // Share of the part's own faces (not shared with a neighbour) that are walls (within
   // side_angle_deg of vertical), by area: a roof piece has few, a dormer or a storey many.
   double wall_share = 0;
-  // Share of the footprint covered by horizontal upward faces (own or shared): 1 for a flat top.
+  // Share of the footprint covered by horizontal upward faces (own or shared) in the top quarter
+  // of its height (at least mass_height_tolerance): 1 for a flat top, less for a low step.
   double flat_top = 0;
   bool grounded = false;
   std::string role;               // its mass's: main, wing, annex, podium, tower, roof, setback, rooftop

@@ -207,6 +207,8 @@ def evaluate(args):
             s = per_source[key]
             s[0] += predicted == m["role"]
             s[1] += 1
+            if args.verbose and predicted != m["role"]:
+                print(f"  role {key} {b['id']}: parts {m['parts']} person {m['role']}, tool {predicted}")
         tool_masses = collections.defaultdict(list)
         for cp in current:
             tool_masses[cp["mass"] if cp["mass"] is not None else ("part", cp["index"])].append(cp)

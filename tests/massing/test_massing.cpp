@@ -243,6 +243,36 @@ TEST(Massing, StoreyOnABaseIsASetbackNotATower) {
   EXPECT_EQ(r.b.massing.features.tiers, 2);
 }
 
+// A block whose upper floor overhangs the lower one on one side: the lower storey is covered by the
+// upper one, which is flush with the full-height block beside it: one mass, not a wing under a
+// setback (docs/massing.md, "Masses", step 6).
+TEST(Massing, StoreyUnderAnOverhangingFloorIsOneMass) {
+  const Result r =
+      run(join({box({0, 0, 0}, {10, 10, 8}), box({10, 0, 0}, {20, 10, 4}), box({10, -2, 4}, {22, 10, 8})}));
+  ASSERT_EQ(r.b.status, "ok") << r.b.reason;
+  ASSERT_TRUE(r.level);
+  EXPECT_GE(r.level->parts.size(), 2u) << describe(r);
+  EXPECT_EQ(r.level->masses.size(), 1u) << describe(r);
+  EXPECT_EQ(r.b.massing.features.tiers, 1) << describe(r);
+  EXPECT_EQ(r.b.massing.features.wings + r.b.massing.features.setbacks, 0) << describe(r);
+}
+
+// A 1.5 m deep gallery along a whole façade, up to 7 m of the block's 8 m: a façade zone, a layer of
+// the block's mass. The same strip 3 m high is a lean-to: an annex.
+TEST(Massing, FacadeZoneIsALayerAndALowStripAnAnnex) {
+  const Result zone = run(join({box({0, 0, 0}, {12, 10, 8}), box({0, -1.5, 0}, {12, 0, 7})}));
+  ASSERT_EQ(zone.b.status, "ok") << zone.b.reason;
+  ASSERT_TRUE(zone.level);
+  ASSERT_EQ(zone.level->parts.size(), 2u) << describe(zone);
+  EXPECT_EQ(zone.level->masses.size(), 1u) << describe(zone);
+  EXPECT_EQ(zone.roles, (Roles{{"main", 2}})) << describe(zone);
+  const Result lean = run(join({box({0, 0, 0}, {12, 10, 8}), box({0, -1.5, 0}, {12, 0, 3})}));
+  ASSERT_EQ(lean.b.status, "ok") << lean.b.reason;
+  ASSERT_TRUE(lean.level);
+  EXPECT_EQ(lean.level->masses.size(), 2u) << describe(lean);
+  EXPECT_EQ(lean.b.massing.features.annexes, 1) << describe(lean);
+}
+
 // Cached outcomes carry the analytics exactly.
 TEST(Massing, JsonRoundTrip) {
   const Result r = run(join({box({0, 0, 0}, {30, 30, 6}), box({9, 9, 6}, {21, 21, 36})}));
