@@ -1,6 +1,6 @@
 // Parts grouped into masses as a person sees them (docs/massing.md, "Masses"), before roles:
 //   1. pieces: a part narrower in plan than thin_width (a façade layer, a wall skin), or a
-//      grounded façade zone under twice that lining a larger part, is a layer; a raised wedge or
+//      façade zone under twice that lining a larger part from its base, is a layer; a raised wedge or
 //      slab with few walls of its own, or covering roof_min_cover of what it rests on, is a roof
 //      piece (whatever the contact below); every other part is a body;
 //   2. bodies sharing a vertical face of at least mass_shared_fraction x the smaller height x the
