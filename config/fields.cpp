@@ -151,6 +151,8 @@ std::vector<Field> fields_of(Params& p) {
        "a part narrower than this in plan is a layer (wall skin, facade layer) of its neighbour's mass"},
       {"massing", "mass_height_tolerance", &p.massing.mass_height_tolerance, at_least(0),
        "pieces of one mass have their tops and bottoms within this"},
+      {"massing", "mass_height_share", &p.massing.mass_height_share, in(0, 1, false, false),
+       "or their tops within this x the shorter one's height (a small step on a tall block), in [0, 1]"},
       {"massing", "mass_convexity", &p.massing.mass_convexity, in(0, 1, false, false),
        "pieces of one mass are together at least this convex (volume / hull volume), in [0, 1]"},
       {"massing", "mass_shared_fraction", &p.massing.mass_shared_fraction, at_least(0),

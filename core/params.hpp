@@ -129,6 +129,7 @@ struct MassingParams {
   // Masses (docs/massing.md, "Masses").
   double thin_width = 1.0;             // a part narrower than this in plan is a layer of its neighbour's mass
   double mass_height_tolerance = 0.5;  // pieces of one mass have their tops and bottoms within this
+  double mass_height_share = 0.05;     // or their tops within this x the shorter one's height
   double mass_convexity = 0.95;        // and together are about as convex as one part (V / V_hull)
   double mass_shared_fraction = 0.5;   // and share a vertical face >= this x min height x min width
   double roof_max_wall_share =

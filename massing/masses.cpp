@@ -122,8 +122,10 @@ void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMes
     const auto [blo, bhi] = z_range(members[b]);
     std::vector<uint32_t> joint = members[a];
     joint.insert(joint.end(), members[b].begin(), members[b].end());
-    if (!one_volume(joint, std::abs(ahi - bhi) <= p.mass_height_tolerance,
-                    std::abs(alo - blo) <= p.mass_height_tolerance))
+    // Tops: a step that is small for the height (0.8 m on a 19 m block) is no new mass.
+    const double top_tol =
+        std::max(p.mass_height_tolerance, p.mass_height_share * std::min(ahi - alo, bhi - blo));
+    if (!one_volume(joint, std::abs(ahi - bhi) <= top_tol, std::abs(alo - blo) <= p.mass_height_tolerance))
       continue;
     uf.link(a, b);
     const uint32_t r = uf.find(a);

@@ -273,6 +273,21 @@ TEST(Massing, FacadeZoneIsALayerAndALowStripAnAnnex) {
   EXPECT_EQ(lean.b.massing.features.annexes, 1) << describe(lean);
 }
 
+// Two flat blocks side by side whose tops differ by 0.8 m: one mass when they are 19 m tall (a
+// small step for the height, mass_height_share), two when they are 6 m tall.
+TEST(Massing, SmallStepOnATallBlockIsOneMass) {
+  const Result tall = run(join({box({0, 0, 0}, {10, 10, 19}), box({10, 0, 0}, {20, 10, 18.2})}));
+  ASSERT_EQ(tall.b.status, "ok") << tall.b.reason;
+  ASSERT_TRUE(tall.level);
+  ASSERT_EQ(tall.level->parts.size(), 2u) << describe(tall);
+  EXPECT_EQ(tall.level->masses.size(), 1u) << describe(tall);
+  const Result low = run(join({box({0, 0, 0}, {10, 10, 6}), box({10, 0, 0}, {20, 10, 5.2})}));
+  ASSERT_EQ(low.b.status, "ok") << low.b.reason;
+  ASSERT_TRUE(low.level);
+  ASSERT_EQ(low.level->parts.size(), 2u) << describe(low);
+  EXPECT_EQ(low.level->masses.size(), 2u) << describe(low);
+}
+
 // Cached outcomes carry the analytics exactly.
 TEST(Massing, JsonRoundTrip) {
   const Result r = run(join({box({0, 0, 0}, {30, 30, 6}), box({9, 9, 6}, {21, 21, 36})}));
