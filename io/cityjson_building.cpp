@@ -162,7 +162,10 @@ class Assembler {
       }
       poly.rings.push_back(std::move(ring));
     }
-    if (value && value->is_number_unsigned() && labels_ && value->get<size_t>() < labels_->size()) {
+    // A semantic index: parsed files hold unsigned numbers, a feature built in code may hold a
+    // signed one (nlohmann::json stores an int as signed).
+    if (value && value->is_number_integer() && value->get<int64_t>() >= 0 && labels_ &&
+        value->get<size_t>() < labels_->size()) {
       const json& s = (*labels_)[value->get<size_t>()];
       if (s.is_object() && s.contains("type") && s["type"].is_string())
         poly.semantic = out_.mesh.label_index(s["type"].get<std::string>());

@@ -223,7 +223,8 @@ void measure_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, dou
     m.footprint_area = m.parts.size() == 1 ? P[m.parts[0]].footprint_area : multipolygon_area(u);
     const PlanExtent e = plan_extent(outer_hull(u));
     m.width = e.width, m.length = e.length;
-    m.grounded = m.z_min <= ground + p.ground_tolerance;
+    m.grounded = m.z_min <= ground + p.ground_tolerance ||
+                 std::any_of(m.parts.begin(), m.parts.end(), [&](uint32_t i) { return P[i].grounded; });
   }
 }
 

@@ -184,6 +184,7 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
     std::map<uint32_t, KindAreas> acc;  // other -> kind -> (area, signed area with this part above)
     double own = 0, walls = 0;          // the part's own faces' area, and its walls'
     double flat_up = 0;                 // horizontal upward faces' area in the top quarter
+    double ground_down = 0;             // its own downward faces on the input's ground surface
     const double top_depth = std::max(p.mass_height_tolerance, (pm.z_max - pm.z_min) / 4);
     for (const Polygon& f : m.faces) {
       const auto [area, nrm] = face_area(m, f);
@@ -191,6 +192,10 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
       if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j) {
         own += area;
         if (std::abs(nrm.z) <= side_sin) walls += area;
+        if (nrm.z <= -stacked_cos && f.semantic >= 0 &&
+            static_cast<size_t>(f.semantic) < m.semantic_labels.size() &&
+            m.semantic_labels[static_cast<size_t>(f.semantic)] == "GroundSurface")
+          ground_down += area;
         continue;
       }
       if (!(area > 0)) continue;
@@ -201,8 +206,12 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
     for (const auto& [other, kinds] : acc) pm.contacts.push_back(contact_from(other, kinds));
     pm.wall_share = own > 0 ? walls / own : 0.0;
     pm.flat_top = pm.footprint_area > 0 ? std::min(1.0, flat_up / pm.footprint_area) : 0.0;
+    // On the ground: the input says so (most of its bottom on the GroundSurface, wherever the
+    // terrain is: a wing on a slope stands higher than the main block), or it starts at the
+    // building's lowest point.
+    pm.grounded = pm.footprint_area > 0 && ground_down >= 0.5 * pm.footprint_area;
   }
-  for (auto& pm : L.parts) pm.grounded = pm.z_min <= ground + p.ground_tolerance;
+  for (auto& pm : L.parts) pm.grounded = pm.grounded || pm.z_min <= ground + p.ground_tolerance;
   group_masses(L, meshes, ground, p);
   assign_roles(L, p);
   return L;

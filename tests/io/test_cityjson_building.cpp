@@ -190,5 +190,27 @@ TEST(ExtractBuilding, GeometryInstanceIsResolvedThroughTheTemplates) {
   EXPECT_EQ(b.mesh.faces[1].semantic, -1);
 }
 
+// A feature built in code (a library user's nlohmann::json) holds its semantic indices as signed
+// integers: they are read as the file's unsigned ones are; a negative index is no surface.
+TEST(ExtractBuilding, SignedSemanticIndicesOfAFeatureBuiltInCode) {
+  ScratchDir dir;
+  const std::string path = dir.file("signed.city.json");
+  std::ofstream(path) << R"({"type":"CityJSON","version":"2.0",
+    "transform":{"scale":[1,1,1],"translate":[0,0,0]},
+    "CityObjects":{"b":{"type":"Building","geometry":[{"type":"MultiSurface","lod":"2.2",
+        "boundaries":[[[0,1,2,3]],[[0,1,4]]],
+        "semantics":{"surfaces":[{"type":"GroundSurface"}],"values":[0,null]}}]}},
+    "vertices":[[0,0,0],[1,0,0],[1,1,0],[0,1,0],[0,0,1]]})";
+  auto w = read_all(path);
+  ASSERT_EQ(w.features.size(), 1u);
+  nlohmann::json& values = w.features[0].objects.at("b")["geometry"][0]["semantics"]["values"];
+  values = nlohmann::json::array({int{0}, int{-1}});
+  ASSERT_TRUE(values[0].is_number_integer() && !values[0].is_number_unsigned());
+  const auto b = extract_building(w.features[0], w.header);
+  ASSERT_EQ(b.mesh.faces.size(), 2u);
+  EXPECT_EQ(b.mesh.faces[0].semantic, 0);
+  EXPECT_EQ(b.mesh.faces[1].semantic, -1);
+}
+
 }  // namespace
 }  // namespace mc::io::test

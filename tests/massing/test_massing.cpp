@@ -288,6 +288,17 @@ TEST(Massing, SmallStepOnATallBlockIsOneMass) {
   EXPECT_EQ(low.level->masses.size(), 2u) << describe(low);
 }
 
+// A wing on a slope: its GroundSurface is 3 m above the main block's. It stands on the ground (the
+// input says so), not on a part: a wing, not a setback.
+TEST(Massing, WingOnHigherGroundIsGrounded) {
+  const Result r = run(join({box({0, 0, 0}, {10, 10, 12}), box({10, 0, 3}, {20, 10, 9})}));
+  ASSERT_EQ(r.b.status, "ok") << r.b.reason;
+  ASSERT_TRUE(r.level);
+  EXPECT_EQ(r.roles, (Roles{{"main", 1}, {"wing", 1}})) << describe(r);
+  EXPECT_EQ(r.b.massing.features.wings, 1) << describe(r);
+  EXPECT_EQ(r.b.massing.features.setbacks, 0) << describe(r);
+}
+
 // Cached outcomes carry the analytics exactly.
 TEST(Massing, JsonRoundTrip) {
   const Result r = run(join({box({0, 0, 0}, {30, 30, 6}), box({9, 9, 6}, {21, 21, 36})}));
