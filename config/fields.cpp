@@ -165,7 +165,7 @@ std::vector<Field> fields_of(Params& p) {
        "roof, "
        "in [0, 1]"},
       {"massing", "storey_min_cover", &p.massing.storey_min_cover, in(0, 1, false, false),
-       "a body whose top is covered at least this much by one mass standing on it is that mass's lower "
+       "a mass whose top is covered at least this much by one mass standing on it is that mass's lower "
        "storey, in [0, 1]"},
       {"", "timeout_s", &p.timeout_s, at_least(0, " (0 disables the deadline)"),
        "per-building deadline in seconds (best result so far); 0 = none"},

@@ -22,10 +22,6 @@ double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return norm(p - (a + ab * t));
 }
 
-bool is_label(const PolygonMesh& mesh, int32_t s, const char* name) {
-  return s >= 0 && static_cast<size_t>(s) < mesh.semantic_labels.size() && mesh.semantic_labels[s] == name;
-}
-
 }  // namespace
 
 OpenInput analyse_open_input(const PolygonMesh& mesh, double dist) {
@@ -102,7 +98,7 @@ OpenInput analyse_open_input(const PolygonMesh& mesh, double dist) {
   bool& semantics = out.semantics;
   for (const Polygon& f : mesh.faces) {
     if (f.semantic >= 0) semantics = true;
-    if (is_label(mesh, f.semantic, "GroundSurface")) out.has_ground = true;
+    if (mesh.is_label(f.semantic, "GroundSurface")) out.has_ground = true;
   }
   if (!semantics)
     for (const Polygon& f : mesh.faces) {

@@ -135,7 +135,7 @@ struct MassingParams {
   double roof_max_wall_share =
       0.35;                       // a raised piece with fewer own walls than this, resting on a part, is roof
   double roof_min_cover = 0.25;   // or covering this share of the footprint of the part it rests on
-  double storey_min_cover = 0.9;  // a body covered this much by one mass on it is that mass's storey
+  double storey_min_cover = 0.9;  // a mass covered this much by one mass on it is that mass's storey
 };
 
 struct Params {

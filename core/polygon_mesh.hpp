@@ -33,6 +33,10 @@ struct PolygonMesh {
     semantic_labels.push_back(label);
     return static_cast<int32_t>(semantic_labels.size() - 1);
   }
+  // Whether semantic index `s` (a face's, -1 = none) names `label`.
+  bool is_label(int32_t s, const char* label) const {
+    return s >= 0 && static_cast<size_t>(s) < semantic_labels.size() && semantic_labels[s] == label;
+  }
 };
 
 }  // namespace mc

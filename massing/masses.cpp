@@ -66,6 +66,21 @@ bool facade_zone(const PartMassing& pm, const std::vector<PartMassing>& P, const
   return false;
 }
 
+// The parts of each mass grown so far, by root (empty for a non-root).
+std::vector<std::vector<uint32_t>> members_by_root(UnionFind& uf, uint32_t n) {
+  std::vector<std::vector<uint32_t>> members(n);
+  for (uint32_t i = 0; i < n; ++i) members[uf.find(i)].push_back(i);
+  return members;
+}
+
+// Joins masses a and b (roots) and their member lists.
+void join_masses(uint32_t a, uint32_t b, UnionFind& uf, std::vector<std::vector<uint32_t>>& members) {
+  uf.link(a, b);
+  const uint32_t r = uf.find(a), other = r == a ? b : a;
+  members[r].insert(members[r].end(), members[other].begin(), members[other].end());
+  members[other].clear();
+}
+
 // Step 1: what kind of piece each part is.
 void classify_pieces(std::vector<PartMassing>& P, const MassingParams& p) {
   const size_t n = P.size();
@@ -86,8 +101,7 @@ void classify_pieces(std::vector<PartMassing>& P, const MassingParams& p) {
 void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMesh>& meshes,
                  const MassingParams& p, UnionFind& uf, bool through_layers) {
   const uint32_t n = static_cast<uint32_t>(P.size());
-  std::vector<std::vector<uint32_t>> members(n);
-  for (uint32_t i = 0; i < n; ++i) members[uf.find(i)].push_back(i);
+  std::vector<std::vector<uint32_t>> members = members_by_root(uf, n);
   auto joins = [&](const PartMassing& a) {
     return a.piece == "body" || (through_layers && a.piece == "layer");
   };
@@ -127,11 +141,7 @@ void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMes
         std::max(p.mass_height_tolerance, p.mass_height_share * std::min(ahi - alo, bhi - blo));
     if (!one_volume(joint, std::abs(ahi - bhi) <= top_tol, std::abs(alo - blo) <= p.mass_height_tolerance))
       continue;
-    uf.link(a, b);
-    const uint32_t r = uf.find(a);
-    members[r] = std::move(joint);
-    if (r != a) members[a].clear();
-    if (r != b) members[b].clear();
+    join_masses(a, b, uf, members);
   }
 }
 
@@ -169,8 +179,7 @@ void join_storeys(const std::vector<PartMassing>& P, const MassingParams& p, Uni
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(),
                    [&](uint32_t a, uint32_t b) { return P[a].z_min > P[b].z_min; });
-  std::vector<std::vector<uint32_t>> members(n);
-  for (uint32_t k = 0; k < n; ++k) members[uf.find(k)].push_back(k);
+  std::vector<std::vector<uint32_t>> members = members_by_root(uf, n);
   for (uint32_t i : order) {
     if (P[i].piece != "body") continue;
     const uint32_t low = uf.find(i);
@@ -187,18 +196,14 @@ void join_storeys(const std::vector<PartMassing>& P, const MassingParams& p, Uni
     }
     for (const auto& [up, area] : cover)
       if (footprint > 0 && area >= p.storey_min_cover * footprint) {
-        uf.link(up, low);
-        const uint32_t r = uf.find(low), other = r == low ? up : low;
-        members[r].insert(members[r].end(), members[other].begin(), members[other].end());
-        members[other].clear();
+        join_masses(up, low, uf, members);
         break;
       }
   }
 }
 
 // The masses in the order of their smallest part index, with their geometry.
-void measure_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, double ground,
-                    const MassingParams& p, UnionFind& uf) {
+void measure_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, UnionFind& uf) {
   auto& P = L.parts;
   std::map<uint32_t, int> id_of_root;
   for (uint32_t i = 0; i < P.size(); ++i) {
@@ -223,8 +228,7 @@ void measure_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, dou
     m.footprint_area = m.parts.size() == 1 ? P[m.parts[0]].footprint_area : multipolygon_area(u);
     const PlanExtent e = plan_extent(outer_hull(u));
     m.width = e.width, m.length = e.length;
-    m.grounded = m.z_min <= ground + p.ground_tolerance ||
-                 std::any_of(m.parts.begin(), m.parts.end(), [&](uint32_t i) { return P[i].grounded; });
+    m.grounded = std::any_of(m.parts.begin(), m.parts.end(), [&](uint32_t i) { return P[i].grounded; });
   }
 }
 
@@ -246,8 +250,7 @@ void mass_contacts(LevelMassing& L) {
 
 }  // namespace
 
-void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, double ground,
-                  const MassingParams& p) {
+void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, const MassingParams& p) {
   L.masses.clear();
   if (L.parts.empty()) return;
   classify_pieces(L.parts, p);
@@ -256,7 +259,7 @@ void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, doubl
   attach_roofs_and_layers(L.parts, uf);
   join_bodies(L.parts, meshes, p, uf, true);
   join_storeys(L.parts, p, uf);
-  measure_masses(L, meshes, ground, p, uf);
+  measure_masses(L, meshes, uf);
   mass_contacts(L);
 }
 

@@ -22,9 +22,8 @@
 
 namespace mc::massing {
 
-// Fills L.masses and each part's `mass` and `piece` (parts must have their geometry and contacts;
-// `ground` is the building's lowest z at this level).
-void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, double ground,
-                  const MassingParams& p);
+// Fills L.masses and each part's `mass` and `piece` (parts must have their geometry, contacts and
+// `grounded`; a mass is grounded when one of its parts is).
+void group_masses(LevelMassing& L, const std::vector<PolygonMesh>& meshes, const MassingParams& p);
 
 }  // namespace mc::massing

@@ -37,7 +37,6 @@ Vec3 vector_area(const PolygonMesh& m, const std::vector<uint32_t>& ring) {
   return s * 0.5;
 }
 
-// Area and unit normal of a face with holes (the outer ring's orientation).
 // A face at the top of its part: its outer ring within `depth` below z_max (a flat roof, not a
 // step or a low terrace).
 bool top_face(const PolygonMesh& m, const Polygon& f, double z_max, double depth) {
@@ -47,6 +46,7 @@ bool top_face(const PolygonMesh& m, const Polygon& f, double z_max, double depth
   return true;
 }
 
+// Area and unit normal of a face with holes (the outer ring's orientation).
 std::pair<double, Vec3> face_area(const PolygonMesh& m, const Polygon& f) {
   if (f.rings.empty()) return {0, {}};
   const Vec3 outer = vector_area(m, f.rings[0]);
@@ -192,10 +192,7 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
       if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j) {
         own += area;
         if (std::abs(nrm.z) <= side_sin) walls += area;
-        if (nrm.z <= -stacked_cos && f.semantic >= 0 &&
-            static_cast<size_t>(f.semantic) < m.semantic_labels.size() &&
-            m.semantic_labels[static_cast<size_t>(f.semantic)] == "GroundSurface")
-          ground_down += area;
+        if (nrm.z <= -stacked_cos && m.is_label(f.semantic, "GroundSurface")) ground_down += area;
         continue;
       }
       if (!(area > 0)) continue;
@@ -212,7 +209,7 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
     pm.grounded = pm.footprint_area > 0 && ground_down >= 0.5 * pm.footprint_area;
   }
   for (auto& pm : L.parts) pm.grounded = pm.grounded || pm.z_min <= ground + p.ground_tolerance;
-  group_masses(L, meshes, ground, p);
+  group_masses(L, meshes, p);
   assign_roles(L, p);
   return L;
 }
