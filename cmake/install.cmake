@@ -15,7 +15,7 @@ target_include_directories(mc_core PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_IN
 set_target_properties(mc_core PROPERTIES EXPORT_NAME core)
 add_library(morphcut::core ALIAS mc_core)
 install(TARGETS mc_core EXPORT morphcutTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(DIRECTORY core/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/morphcut/core FILES_MATCHING PATTERN "*.hpp")
+install(DIRECTORY core/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/morphcut/core FILES_MATCHING PATTERN "*.hpp" PATTERN "*.def")
 install(EXPORT morphcutTargets NAMESPACE morphcut:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/morphcut)
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/morphcutConfig.cmake.in
                               ${CMAKE_BINARY_DIR}/morphcutConfig.cmake

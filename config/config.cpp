@@ -20,30 +20,6 @@ namespace {
 using config_detail::AutoDouble;
 using config_detail::Field;
 
-// Names accepted at the top level besides the sections and the Params fields (config/run_config.hpp),
-// in lod.yaml's order, with their help.
-struct NamedHelp {  // a run key or a section, with its help for --print-config
-  const char* name;
-  const char* help;
-  bool affects_outputs = true;  // as Field::affects_outputs
-};
-const NamedHelp kRunKeys[] = {
-    {"in_flight",
-     "max buildings in flight, and how far ahead the largest is started first (bounds memory); auto = "
-     "max(16, 8 x threads)",
-     false},
-    {"lod", "input LoD to decompose: highest, or e.g. \"2.2\""},
-    {"output_levels", "levels written as BuildingParts: all, or values from decompose.levels"},
-    {"log_level",
-     "stderr messages: trace, debug, info (summary), warn (input problems), error, critical or off", false},
-};
-// The sections, in lod.yaml's order, with their help.
-const NamedHelp kSections[] = {
-    {"preprocess", ""},
-    {"decompose", ""},
-    {"massing", "part roles and building massing features (docs/massing.md)"},
-};
-
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -69,6 +45,12 @@ std::string unknown_key_reason(const std::string& name, const std::vector<std::s
   if (best_d <= std::max<std::size_t>(2, name.size() / 3))
     return "unknown key (did you mean '" + best + "'?)";
   return "unknown key";
+}
+
+bool is_section(const std::string& name) {
+  for (const auto& s : config_detail::sections())
+    if (name == s.name) return true;
+  return false;
 }
 
 const char* kind_name(const YAML::Node& n) {
@@ -134,15 +116,16 @@ class Loader {
   }
 
   void walk_top(const YAML::Node& root, std::vector<Field>& fields, LoadedConfig& out) {
-    std::vector<std::string> known = {"preprocess", "decompose", "massing"};
+    std::vector<std::string> known;
+    for (const auto& s : config_detail::sections()) known.push_back(s.name);
     for (const auto& f : fields)
       if (!*f.section) known.push_back(f.name);
-    for (const NamedHelp& k : kRunKeys) known.push_back(k.name);
+    for (const auto& k : config_detail::run_keys()) known.push_back(k.name);
 
     each_key(root, "",
              [&](const std::string& name, const std::string& path, const YAML::Node& key,
                  const YAML::Node& value) {
-               if (name == "preprocess" || name == "decompose" || name == "massing") {
+               if (is_section(name)) {
                  walk_section(name, value, fields);
                } else if (Field* f = find(fields, "", name)) {
                  set_field(*f, value);
@@ -334,71 +317,6 @@ nlohmann::json effective_config_json(const Params& params, const RunConfig& run)
   j["in_flight"] = run.in_flight > 0 ? nlohmann::json(run.in_flight) : nlohmann::json("auto");
   j["log_level"] = run.log_level;
   return j;
-}
-
-namespace {
-
-// Shortest text that reads back as the same double, in fixed notation unless that is long.
-std::string yaml_number(double v) {
-  char buf[400];
-  auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
-  if (r.ec != std::errc() || r.ptr - buf > 12) r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
-
-std::string yaml_value(const nlohmann::json& v) {
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_number_float()) return yaml_number(v.get<double>());
-  if (v.is_array()) {
-    std::string out = "[";
-    for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + yaml_value(v[i]);
-    return out + "]";
-  }
-  return v.dump();
-}
-
-// `key: value` with its help as a comment from column 31 (at least two spaces before it).
-void yaml_line(std::ostringstream& out, const std::string& indent, const std::string& key,
-               const std::string& value, const std::string& help) {
-  std::string line = indent + key + ":" + (value.empty() ? "" : " " + value);
-  if (!help.empty()) line += std::string(line.size() + 2 < 31 ? 31 - line.size() : 2, ' ') + "# " + help;
-  out << line << "\n";
-}
-
-}  // namespace
-
-std::string config_yaml(const Params& params, const RunConfig& run) {
-  const nlohmann::json j = effective_config_json(params, run);
-  Params copy = params;  // fields_of needs a mutable object; nothing is written through it
-  const auto fields = config_detail::fields_of(copy);
-  std::ostringstream out;
-  out << "# morphcut-city configuration: every key with its default. Copy it and change what you need;\n"
-         "# keys you leave out keep these defaults, unknown keys are rejected. Units: model units (metres\n"
-         "# for 3D BAG), degrees for angles. Reference: docs/config.md. Printed by\n"
-         "# `morphcut-city --print-config` from the key table (config/fields.cpp).\n";
-  for (const NamedHelp& section : kSections) {
-    out << "\n";
-    yaml_line(out, "", section.name, "", section.help);
-    for (const auto& f : fields)
-      if (f.section == std::string(section.name))
-        yaml_line(out, "  ", f.name, yaml_value(j[f.section][f.name]), f.help);
-  }
-  out << "\n";
-  for (const auto& f : fields)
-    if (!*f.section) yaml_line(out, "", f.name, yaml_value(j[f.name]), f.help);
-  for (const NamedHelp& k : kRunKeys) yaml_line(out, "", k.name, yaml_value(j[k.name]), k.help);
-  return out.str();
-}
-
-std::vector<std::string> keys_not_affecting_outputs() {
-  std::vector<std::string> keys;
-  Params p;
-  for (const Field& f : config_detail::fields_of(p))
-    if (!f.affects_outputs) keys.push_back(f.path());
-  for (const NamedHelp& k : kRunKeys)
-    if (!k.affects_outputs) keys.push_back(k.name);
-  return keys;
 }
 
 }  // namespace mc

@@ -1,8 +1,9 @@
 // Loading the run configuration (YAML, see config/lod.yaml for every key with its default) into
 // mc::Params + mc::RunConfig, and echoing the effective configuration for the run report.
 //
-// YAML layout: sections `preprocess:` and `decompose:` whose keys are the Params field names,
-// plus top-level `timeout_s`, `threads`, `lod`, `output_levels`, `in_flight`, `log_level`.
+// YAML layout: sections `preprocess:`, `decompose:` and `massing:` whose keys are the Params field
+// names, plus top-level `timeout_s`, `max_faces`, `threads`, `lod`, `output_levels`, `in_flight`,
+// `log_level`. Every key is declared once, in core/params.def.
 // `cell_size`, `dist_thresh`, `max_distance` accept `auto`; `in_flight` accepts `auto`;
 // `output_levels` is `all` or a list of values taken from `decompose.levels`. Missing keys keep
 // their defaults; unknown keys, duplicate keys, wrong types and out-of-range values throw
@@ -50,5 +51,7 @@ Json outputs_config_json(Json c) {
 
 // The configuration as a YAML file with every key's help (config/lod.yaml is this for the defaults).
 std::string config_yaml(const Params& params, const RunConfig& run);
+// docs/config.md's key tables (Markdown): every key's type, default, range and meaning, per section.
+std::string config_reference_markdown();
 
 }  // namespace mc

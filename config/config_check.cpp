@@ -37,7 +37,7 @@ void one_of(const std::string& key, const std::string& v, const std::vector<cons
   throw ConfigError(key, "must be one of " + list + ", got '" + v + "'");
 }
 
-// The range a key's table entry gives (config/fields.cpp).
+// The range a key declares (core/params.def, read through config/fields.cpp).
 void check_number(const std::string& key, double v, const config_detail::Range& r) {
   using config_detail::Range;
   if (r.kind == Range::Any) return;

@@ -1,6 +1,7 @@
-// The table of YAML keys that map one-to-one onto Params fields, with the values each accepts and
-// its help. Loader, validation, JSON echo, --print-config and config/lod.yaml (printed from it)
-// all walk this one table, so a new Params field needs one entry here.
+// The table of configuration keys: the Params keys expanded from core/params.def (their one
+// declaration), the run keys of config/run_config.hpp and the sections. The loader, the range
+// checks, the JSON echo, --print-config (config/lod.yaml) and docs/config.md's key tables
+// (config/reference.cpp) all walk this table.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -24,11 +25,14 @@ struct Range {
   enum Kind { Any, Finite, Interval, OneOf } kind = Any;
   double lo = -1e308, hi = 1e308;  // Interval: bounds (an infinite bound is not shown)
   bool lo_open = false, hi_open = false;
-  const char* note = "";             // appended to the rule, e.g. " (0 = all)"
+  const char* note = "";             // appended to the rule, e.g. " (0 = all)"; Any: the whole rule
   std::vector<const char*> choices;  // OneOf
-  std::string text() const;          // "(0, 90)", ">= 1 (0 = all)", "one of z, y, auto"; "" for Any
+  // "in (0, 90)", ">= 1 (0 = all)", "one of z, y, auto"; Any: its note (a rule between keys)
+  std::string text() const;
 };
 inline Range any() { return {}; }
+// A rule checked with the relations between keys (config/config_check.cpp), shown as `text`.
+inline Range rule(const char* text) { return {Range::Any, -1e308, 1e308, false, false, text, {}}; }
 inline Range finite() {
   Range r;
   r.kind = Range::Finite;
@@ -44,8 +48,7 @@ inline Range one_of(std::vector<const char*> choices) {
   return {Range::OneOf, -1e308, 1e308, false, false, "", std::move(choices)};
 }
 
-// One key: where it lives, what it accepts and what it means. Its default is the Params member's
-// initialiser (core/params.hpp); config/lod.yaml is this table printed (a test compares them).
+// One key of core/params.def: where it lives, what it accepts and what it means.
 struct Field {
   const char* section;  // "preprocess", "decompose", "massing" or "" for top level
   const char* name;
@@ -58,7 +61,25 @@ struct Field {
   std::string path() const { return *section ? std::string(section) + "." + name : name; }
 };
 
-// The fields of `p`, in the order lod.yaml and the JSON echo list them.
+// The fields of `p`, in the order of core/params.def (lod.yaml's and the JSON echo's).
 std::vector<Field> fields_of(Params& p);
+
+// A top-level key of RunConfig (parsed by config/config.cpp, which knows its form), with what the
+// reference says of it; its default is RunConfig's.
+struct RunKey {
+  const char* name;
+  const char* type;   // as docs/config.md's "type" column
+  const char* range;  // the values it accepts, in words
+  const char* help;
+  bool affects_outputs = true;  // as Field::affects_outputs
+};
+const std::vector<RunKey>& run_keys();
+
+// A section of the YAML layout, with its help (a comment in lod.yaml, a heading in docs/config.md).
+struct Section {
+  const char* name;
+  const char* help;
+};
+const std::vector<Section>& sections();
 
 }  // namespace mc::config_detail

@@ -31,6 +31,44 @@ double since(SteadyClock::time_point t0) {
   return std::chrono::duration<double>(SteadyClock::now() - t0).count();
 }
 
+// The writer node's step: one finished building into the output files, counted. Runs serially,
+// in input order.
+void write_outcome(Work& w, RunOutputs& outputs, Feeder& feeder, RunResult& res, size_t& flagged) {
+  mc::report::BuildingOutcome& b = w.outcome;
+  b.sequence = w.sequence;
+  b.time.read = w.read_seconds;
+  const auto t = SteadyClock::now();
+  outputs.write_cities(b);
+  feeder.written();  // (before the limiter is decremented: the feeder counts on it)
+  b.time.write = since(t);
+  ++res.features;
+  // Freed geometry stays in glibc's per-thread arenas; hand it back now and then so that
+  // resident memory stays flat over a long city (the heap itself does not grow).
+  if (res.features % 128 == 0) malloc_trim(0);
+  if (b.is_building) {
+    ++res.buildings;
+    ++res.counts[b.status];
+    flagged += b.status == "failed" || b.status == "partial";
+    outputs.write_rows(b);
+  }
+}
+
+// After the last building: the files committed, the reader's notes and the cache's counts kept,
+// the report written.
+void finish_run(const RunOptions& opt, const Params& params, const RunConfig& rc, RunInput& in,
+                RunOutputs& outputs, BuildingCache* cache, SteadyClock::time_point start, RunResult& res) {
+  outputs.commit_files();
+  if (!in.header.coords_note.empty()) res.reader_problems.push_back(in.header.coords_note);
+  if (!in.grid.note.empty()) res.reader_problems.push_back(in.grid.note);
+  for (const auto& p : in.source->problems()) res.reader_problems.push_back(p);
+  if (cache) res.cache = cache->stats();
+  res.wall_seconds = since(start);
+  res.peak_rss_mb = peak_rss_mb();
+  if (outputs.has_report())
+    outputs.commit_report(
+        run_report(opt, params, rc, res, in, outputs, cache ? cache->dir() : std::string()));
+}
+
 }  // namespace
 
 int RunResult::exit_code() const {
@@ -96,24 +134,8 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   tbb::flow::sequencer_node<Msg> order(g, [](const Msg& w) { return w->sequence; });
   tbb::flow::function_node<Msg, tbb::flow::continue_msg> write(g, tbb::flow::serial, [&](Msg w) {
     if (stop.load() || interrupt_signal()) return tbb::flow::continue_msg();
-    mc::report::BuildingOutcome& b = w->outcome;
-    b.sequence = w->sequence;
-    b.time.read = w->read_seconds;
-    const auto t = SteadyClock::now();
     try {
-      outputs.write_cities(b);
-      feeder.written();  // (before the limiter is decremented: the feeder counts on it)
-      b.time.write = since(t);
-      ++res.features;
-      // Freed geometry stays in glibc's per-thread arenas; hand it back now and then so that
-      // resident memory stays flat over a long city (the heap itself does not grow).
-      if (res.features % 128 == 0) malloc_trim(0);
-      if (b.is_building) {
-        ++res.buildings;
-        ++res.counts[b.status];
-        flagged += b.status == "failed" || b.status == "partial";
-        outputs.write_rows(b);
-      }
+      write_outcome(*w, outputs, feeder, res, flagged);
     } catch (...) {
       write_error = std::current_exception();
       stop = true;
@@ -135,16 +157,7 @@ RunResult run_city(const RunOptions& opt, const Params& params, const RunConfig&
   if (feeder.error()) std::rethrow_exception(feeder.error());
   if (write_error) std::rethrow_exception(write_error);
 
-  outputs.commit_files();
-  if (!in.header.coords_note.empty()) res.reader_problems.push_back(in.header.coords_note);
-  if (!in.grid.note.empty()) res.reader_problems.push_back(in.grid.note);
-  for (const auto& p : in.source->problems()) res.reader_problems.push_back(p);
-  if (cache) res.cache = cache->stats();
-  res.wall_seconds = since(start);
-  res.peak_rss_mb = peak_rss_mb();
-  if (outputs.has_report())
-    outputs.commit_report(
-        run_report(opt, params, rc, res, in, outputs, cache ? cache->dir() : std::string()));
+  finish_run(opt, params, rc, in, outputs, cache.get(), start, res);
   return res;
 }
 

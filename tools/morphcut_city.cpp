@@ -90,7 +90,7 @@ struct CliArgs {
   std::string input, config_path, output, report, summary, lod, cache_dir, html, graph, gpkg, output_crs;
   bool no_graph = false, no_gpkg = false, quiet = false, no_report = false, no_summary = false,
        no_html = false;
-  bool print_config = false, no_fast_path = false;
+  bool print_config = false, print_reference = false, no_fast_path = false;
   int threads = -1;
   double timeout = -1;
 };
@@ -137,6 +137,9 @@ CLI::Option* declare_options(CLI::App& app, CliArgs& a) {
   app.add_flag("--print-config", a.print_config,
                "print the effective configuration (defaults, then --config, then these options) as YAML with "
                "every key's help, and exit; with no --config it is config/lod.yaml");
+  app.add_flag("--print-config-reference", a.print_reference,
+               "print every key's type, default, range and meaning as Markdown tables (docs/config.md's), "
+               "and exit");
   app.add_flag(
       "--no-fast-path", a.no_fast_path,
       "label every building by the full vote, also valid solids (config preprocess.fast_path: false; "
@@ -220,6 +223,10 @@ std::string output_stem_of(const CliArgs& a) {
 
 // The decomposition run and its page; exceptions are the caller's.
 int run(const CliArgs& a) {
+  if (a.print_reference) {
+    std::fputs(mc::config_reference_markdown().c_str(), stdout);
+    return 0;
+  }
   const mc::LoadedConfig cfg = load_config(a);
   if (a.print_config) {
     std::fputs(mc::config_yaml(cfg.params, cfg.run).c_str(), stdout);
@@ -259,7 +266,7 @@ int main(int argc, char** argv) {
   CliArgs a;
   CLI::Option* input_opt = declare_options(app, a);
   if (const auto code = mc::cli::parse_or_exit(app, argc, argv)) return *code;
-  if (!a.print_config && input_opt->count() == 0) {
+  if (!a.print_config && !a.print_reference && input_opt->count() == 0) {
     app.exit(CLI::RequiredError(input_opt->get_name()));
     return mc::cli::kExitUsage;
   }

@@ -41,6 +41,16 @@ TEST(Cli, PrintConfigIsLodYamlAndShowsOverrides) {
   EXPECT_NE(c.output.find("  fast_path: false "), std::string::npos) << c.output;
 }
 
+// --print-config-reference prints docs/config.md's key tables, without an input.
+TEST(Cli, PrintConfigReferenceIsTheDocsTables) {
+  MC_REQUIRE_CLI();
+  const ProcessResult r = run_command(cli_path() + " --print-config-reference 2>/dev/null");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.output.find("| `storey_min_cover` | number | 0.9 | [0, 1] |"), std::string::npos) << r.output;
+  EXPECT_NE(mc::test::slurp(std::string(MC_SOURCE_DIR) + "/docs/config.md").find(r.output),
+            std::string::npos);
+}
+
 TEST(Cli, UsageConfigAndReadErrorsExitTwo) {
   MC_REQUIRE_CLI();
   TempDir dir("cli_errors");
