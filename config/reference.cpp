@@ -121,7 +121,8 @@ std::string config_yaml(const Params& params, const RunConfig& run) {
   out << "\n";
   for (const auto& f : fields)
     if (!*f.section) yaml_line(out, "", f.name, yaml_value(j[f.name]), f.help, range_yaml(f));
-  for (const auto& k : config_detail::run_keys()) yaml_line(out, "", k.name, yaml_value(j[k.name]), k.help, k.range);
+  for (const auto& k : config_detail::run_keys())
+    yaml_line(out, "", k.name, yaml_value(j[k.name]), k.help, k.range);
   return out.str();
 }
 
@@ -135,13 +136,15 @@ std::string config_reference_markdown() {
     table_head(out);
     for (const auto& f : fields)
       if (f.section == std::string(section.name))
-        table_row(out, f.name, type_text(f), default_markdown(j[f.section][f.name]), range_markdown(f), f.help);
+        table_row(out, f.name, type_text(f), default_markdown(j[f.section][f.name]), range_markdown(f),
+                  f.help);
     out << "\n";
   }
   out << "## Top level (the run)\n\n";
   table_head(out);
   for (const auto& f : fields)
-    if (!*f.section) table_row(out, f.name, type_text(f), default_markdown(j[f.name]), range_markdown(f), f.help);
+    if (!*f.section)
+      table_row(out, f.name, type_text(f), default_markdown(j[f.name]), range_markdown(f), f.help);
   for (const auto& k : config_detail::run_keys())
     table_row(out, k.name, k.type, default_markdown(j[k.name]), k.range, k.help);
   return out.str();

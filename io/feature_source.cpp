@@ -31,10 +31,9 @@ bool ends_with_icase(const std::string& s, const std::string& suffix) {
 }
 
 // Latitude-first coordinates turned longitude first (x = easting-like, y = northing-like).
-class LongitudeFirstSource : public FeatureSource {
+class LongitudeFirstSource : public SourceFilter {
  public:
-  explicit LongitudeFirstSource(std::unique_ptr<FeatureSource> in)
-      : in_(std::move(in)), header_(in_->header()) {
+  explicit LongitudeFirstSource(std::unique_ptr<FeatureSource> in) : SourceFilter(std::move(in)) {
     header_.coords.lat_first = false;
     if (auto t = header_.root.find("transform"); t != header_.root.end() && t->is_object())
       for (const char* k : {"scale", "translate"})
@@ -43,19 +42,11 @@ class LongitudeFirstSource : public FeatureSource {
     header_.coords_note = "the file's coordinates are latitude first (" + header_.crs +
                           "): they are written longitude first, as CityJSON writes geographic coordinates";
   }
-  const Header& header() const override { return header_; }
   bool next(Feature& out) override {
     if (!in_->next(out)) return false;
     for (mc::Vec3& v : out.vertices) std::swap(v.x, v.y);
     return true;
   }
-  const std::vector<std::string>& problems() const override { return in_->problems(); }
-  std::string format() const override { return in_->format(); }
-  std::optional<size_t> feature_count() const override { return in_->feature_count(); }
-
- private:
-  std::unique_ptr<FeatureSource> in_;
-  Header header_;
 };
 
 }  // namespace

@@ -26,6 +26,21 @@ class FeatureSource {
   virtual std::optional<size_t> feature_count() const { return std::nullopt; }
 };
 
+// A source that changes another's features as they are read (axis order, CRS): it owns the inner
+// source and forwards what it does not change; the header starts as the inner one's.
+class SourceFilter : public FeatureSource {
+ public:
+  explicit SourceFilter(std::unique_ptr<FeatureSource> in) : in_(std::move(in)), header_(in_->header()) {}
+  const Header& header() const override { return header_; }
+  const std::vector<std::string>& problems() const override { return in_->problems(); }
+  std::string format() const override { return in_->format(); }
+  std::optional<size_t> feature_count() const override { return in_->feature_count(); }
+
+ protected:
+  std::unique_ptr<FeatureSource> in_;
+  Header header_;
+};
+
 // True for the CityGML extensions: .gml, .xml and their gzip-compressed forms (.gml.gz, .xml.gz).
 bool is_citygml_path(const std::string& path);
 

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <utility>
 
 #include "io/errors.hpp"
 #include "io/temp_registry.hpp"
@@ -109,19 +110,14 @@ GpkgWriter::GpkgWriter(const std::string& path, const std::string& crs, std::vec
   if (!impl_->buildings || !impl_->parts) throw WriteError(path + ": cannot create layers");
   for (const auto& c : columns) impl_->create(impl_->buildings, c.name.c_str(), ogr_type(c.type));
   impl_->n_columns = columns.size();
-  impl_->create(impl_->parts, "building", OFTString);
-  impl_->create(impl_->parts, "part", OFTString);
-  impl_->create(impl_->parts, "level", OFTReal);
-  impl_->create(impl_->parts, "part_index", OFTInteger);
-  impl_->create(impl_->parts, "role", OFTString);
-  impl_->create(impl_->parts, "z_min", OFTReal);
-  impl_->create(impl_->parts, "z_max", OFTReal);
-  impl_->create(impl_->parts, "volume", OFTReal);
-  impl_->create(impl_->parts, "convexity", OFTReal);
-  impl_->create(impl_->parts, "footprint_area", OFTReal);
-  impl_->create(impl_->parts, "grounded", OFTInteger);
-  impl_->create(impl_->parts, "mass", OFTInteger);
-  impl_->create(impl_->parts, "piece", OFTString);
+  // The parts layer's columns, in the order of their indices in add_part.
+  static const std::pair<const char*, OGRFieldType> kPartColumns[] = {
+      {"building", OFTString},     {"part", OFTString},      {"level", OFTReal},
+      {"part_index", OFTInteger},  {"role", OFTString},      {"z_min", OFTReal},
+      {"z_max", OFTReal},          {"volume", OFTReal},      {"convexity", OFTReal},
+      {"footprint_area", OFTReal}, {"grounded", OFTInteger}, {"mass", OFTInteger},
+      {"piece", OFTString}};
+  for (const auto& [name, type] : kPartColumns) impl_->create(impl_->parts, name, type);
   if (impl_->ds->StartTransaction() != OGRERR_NONE) throw WriteError(path + ": cannot start a transaction");
 }
 

@@ -68,6 +68,17 @@ bool is_off_header(std::string_view t) {
   return p.empty();
 }
 
+// A face of three or more vertices joins the mesh; a shorter one is skipped with a problem line.
+void add_face(mc::PolygonMesh& mesh, std::vector<uint32_t> ring, int32_t label, const Lines& lines,
+              std::vector<std::string>* problems) {
+  if (ring.size() >= 3) {
+    mesh.faces.push_back(mc::Polygon{{std::move(ring)}, label});
+  } else if (problems) {
+    problems->push_back(lines.path + ":" + std::to_string(lines.number) +
+                        ": face with fewer than 3 vertices skipped");
+  }
+}
+
 }  // namespace
 
 mc::PolygonMesh read_off(const std::string& path, std::vector<std::string>* problems) {
@@ -114,13 +125,7 @@ mc::PolygonMesh read_off(const std::string& path, std::vector<std::string>* prob
                           " vertices)");
       ring.push_back(static_cast<uint32_t>(idx));
     }
-    if (ring.size() < 3) {
-      if (problems)
-        problems->push_back(path + ":" + std::to_string(lines.number) +
-                            ": face with fewer than 3 vertices skipped");
-      continue;
-    }
-    mesh.faces.push_back(mc::Polygon{{std::move(ring)}, -1});
+    add_face(mesh, std::move(ring), -1, lines, problems);
   }
   return mesh;
 }
@@ -147,13 +152,7 @@ mc::PolygonMesh read_obj(const std::string& path, std::vector<std::string>* prob
                             " vertices so far)");
         ring.push_back(static_cast<uint32_t>(idx));
       }
-      if (ring.size() < 3) {
-        if (problems)
-          problems->push_back(path + ":" + std::to_string(lines.number) +
-                              ": face with fewer than 3 vertices skipped");
-        continue;
-      }
-      mesh.faces.push_back(mc::Polygon{{std::move(ring)}, label});
+      add_face(mesh, std::move(ring), label, lines, problems);
     } else if (tok[0] == "usemtl") {
       label = (tok.size() < 2 || tok[1] == "none") ? -1 : mesh.label_index(std::string(tok[1]));
     }

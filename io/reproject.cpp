@@ -84,7 +84,7 @@ std::string reference_system_url(const std::string& crs) {
 
 ReprojectedSource::ReprojectedSource(std::unique_ptr<FeatureSource> in, const std::string& to,
                                      std::optional<double> scale, const std::string& from)
-    : in_(std::move(in)), header_(in_->header()) {
+    : SourceFilter(std::move(in)) {
   if (!from.empty()) header_.crs = from;
   if (header_.crs.empty())
     throw std::runtime_error(

@@ -39,20 +39,14 @@ std::string reference_system_url(const std::string& crs);
 // geographicalExtent follow (the transform's scale is `scale` horizontally, or by default 1e-8
 // for degrees and 0.001 for linear units, and the input's vertical scale), and every feature's
 // vertices are transformed as it is read.
-class ReprojectedSource : public FeatureSource {
+class ReprojectedSource : public SourceFilter {
  public:
   // `from` overrides the input's CRS (for a file that lost it); empty = the input's own.
   ReprojectedSource(std::unique_ptr<FeatureSource> in, const std::string& to,
                     std::optional<double> scale = std::nullopt, const std::string& from = "");
-  const Header& header() const override { return header_; }
   bool next(Feature& out) override;
-  const std::vector<std::string>& problems() const override { return in_->problems(); }
-  std::string format() const override { return in_->format(); }
-  std::optional<size_t> feature_count() const override { return in_->feature_count(); }
 
  private:
-  std::unique_ptr<FeatureSource> in_;
-  Header header_;
   std::unique_ptr<Reprojector> proj_;
 };
 
