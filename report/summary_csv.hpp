@@ -1,5 +1,5 @@
-// The planners' summary (architecture.md §5): one RFC 4180 row per building, streamed to an
-// atomic file. Columns:
+// The planners' summary (docs/output-format.md, the files table): one RFC 4180 row per building, streamed to
+// an atomic file. Columns:
 //   id, status, reason, lod, parts_<l> for each written level l,
 //   height            max z - min z of the input geometry,
 //   footprint_area    projected area of the GroundSurface faces, or of the 2D convex hull of
