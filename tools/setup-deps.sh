@@ -11,6 +11,7 @@ PKGS=(
   python3  # tools/gen_citygml.py: the CityGML streaming-memory test generates its input
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev
+  libjemalloc-dev  # the executables' allocator (docs/design.md "The allocator")
   slurm-wlm munge  # tests/slurm: a one-node Slurm cluster on localhost for the job-array test
   clang-format  # tools/format.sh: the sources' style (.clang-format), checked by a test
   clang libclang-rt-14-dev  # tools/fuzz.sh: libFuzzer (libclang_rt.fuzzer) and clang's sanitizers
