@@ -92,10 +92,44 @@ void classify_pieces(std::vector<PartMassing>& P, const MassingParams& p) {
   }
 }
 
+// Two roof faces lie in one plane: normals within 2.6° and the one's vertex within 5 cm of the
+// other's plane. Pieces the decomposition cut out of one roof share its fitted plane exactly, up
+// to the output grid, so these only absorb rounding.
+bool coplanar(const RoofFace& f, const RoofFace& g) {
+  return dot(f.normal, g.normal) >= 0.999 && std::abs(dot(g.normal, f.point - g.point)) <= 0.05;
+}
+
+// Step 2 (d): a slice of a body, cut off under its slope. A lower body standing beside a higher one
+// on the same base, at least slice_min_height_share of its height and at most slice_max_width_share
+// of its width, whose footprint is covered (slice_roof_share) by sloped roof faces in the planes of
+// the higher one's roof faces, nothing standing on it: the strip of a gable's side, the corner
+// under a hipped roof. An annex under a catslide roof continues the roof too but is much lower;
+// an arm of an L is as wide as the house.
+bool slice_of(const std::vector<uint32_t>& low, const std::vector<uint32_t>& high,
+              const PartMassing& low_part, const PartMassing& high_part, double low_height,
+              double high_height, const std::vector<PartMassing>& P, const MassingParams& p) {
+  if (low_height < p.slice_min_height_share * high_height) return false;
+  if (low_part.width > p.slice_max_width_share * high_part.width) return false;
+  const double flat_cos = std::cos(p.stacked_angle_deg * M_PI / 180);
+  double covered = 0, footprint = 0;  // in plan
+  for (uint32_t i : low) {
+    footprint += P[i].footprint_area;
+    for (const RoofFace& f : P[i].roof_faces) {
+      if (f.normal.z >= flat_cos) continue;  // a flat roof at another height is its own
+      bool found = false;
+      for (uint32_t j : high)
+        for (const RoofFace& g : P[j].roof_faces) found = found || coplanar(f, g);
+      if (found) covered += f.area * f.normal.z;
+    }
+  }
+  return footprint > 0 && covered >= p.slice_roof_share * footprint;
+}
+
 // Step 2: bodies of one volume, pairs by decreasing shared vertical area, tops within the
 // tolerance and (a) bottoms apart: a piece standing on something lower, flush with the top of the
 // body beside it (an overhang, an upper storey over an annex); or bottoms within the tolerance too
-// and (b) one flat roof, every piece flat-topped, or (c) together about as convex as one part.
+// and (b) one flat roof, every piece flat-topped, or (c) together about as convex as one part; or
+// tops apart, bottoms within the tolerance and (d) the lower is a slice of the higher (slice_of).
 // With `through_layers` (step 5), the masses grown so far are joined by the same tests, their
 // layers counting as contacts: two blocks of one height with a façade zone between them.
 void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMesh>& meshes,
@@ -139,8 +173,14 @@ void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMes
     // Tops: a step that is small for the height (0.8 m on a 19 m block) is no new mass.
     const double top_tol =
         std::max(p.mass_height_tolerance, p.mass_height_share * std::min(ahi - alo, bhi - blo));
-    if (!one_volume(joint, std::abs(ahi - bhi) <= top_tol, std::abs(alo - blo) <= p.mass_height_tolerance))
-      continue;
+    const bool same_top = std::abs(ahi - bhi) <= top_tol;
+    const bool same_bottom = std::abs(alo - blo) <= p.mass_height_tolerance;
+    const bool a_low = ahi < bhi;
+    const bool slice =
+        !same_top && same_bottom &&
+        slice_of(members[a_low ? a : b], members[a_low ? b : a], P[a_low ? i : j], P[a_low ? j : i],
+                 a_low ? ahi - alo : bhi - blo, a_low ? bhi - blo : ahi - alo, P, p);
+    if (!slice && !one_volume(joint, same_top, same_bottom)) continue;
     join_masses(a, b, uf, members);
   }
 }

@@ -31,8 +31,9 @@ namespace {
 // 2: parts checked and repaired on the output grid (docs/output-format.md); 3: massing analytics;
 // 4: a level's result in the report's schema (report/level_json.hpp); 5: masses (docs/massing.md);
 // 6: parts of valid solids labelled by exact inside volumes (docs/design.md), masses across layers
-// and storeys (docs/massing.md): entries of the same version written before hold other parts
-constexpr int kFormat = 6;
+// and storeys (docs/massing.md): entries of the same version written before hold other parts;
+// 7: slices under a slope join their body's mass (docs/massing.md)
+constexpr int kFormat = 7;
 
 // Settings that do not change a complete result: worker threads, buildings in flight, logging
 // (outputs are byte-identical for any thread count). Everything else in the effective config is

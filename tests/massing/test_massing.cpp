@@ -299,6 +299,42 @@ TEST(Massing, WingOnHigherGroundIsGrounded) {
   EXPECT_EQ(r.b.massing.features.setbacks, 0) << describe(r);
 }
 
+// A gable house whose south slope runs on over a 2 m strip beside it (the footprint juts out at
+// one corner): the decomposition cuts the strip off, lower than the ridge (9.2 against 11 m) with
+// its roof in the south slope's plane. A slice of the house, one mass (slice_of); the same strip
+// as a flat-roofed box of that height is an annex.
+TEST(Massing, SliceUnderTheSlopeIsOneMassAndABoxBesideItAnAnnex) {
+  using mc::test::add_face;
+  using mc::test::add_vertex;
+  PolygonMesh m;
+  const uint32_t g0 = add_vertex(m, {0, 0, 0}), g1 = add_vertex(m, {12, 0, 0}),
+                 g2 = add_vertex(m, {12, 2, 0}), g3 = add_vertex(m, {10, 2, 0}),
+                 g4 = add_vertex(m, {10, 10, 0}), g5 = add_vertex(m, {0, 10, 0});
+  const uint32_t t0 = add_vertex(m, {0, 0, 8}), t1 = add_vertex(m, {12, 0, 8}),
+                 t2 = add_vertex(m, {12, 2, 9.2}), t3 = add_vertex(m, {10, 2, 9.2}),
+                 t4 = add_vertex(m, {10, 10, 8}), t5 = add_vertex(m, {0, 10, 8});
+  const uint32_t r0 = add_vertex(m, {0, 5, 11}), r1 = add_vertex(m, {10, 5, 11});
+  add_face(m, {g0, g5, g4, g3, g2, g1}, "GroundSurface");
+  add_face(m, {g0, g1, t1, t0}, "WallSurface");
+  add_face(m, {g1, g2, t2, t1}, "WallSurface");
+  add_face(m, {g2, g3, t3, t2}, "WallSurface");
+  add_face(m, {g3, g4, t4, r1, t3}, "WallSurface");
+  add_face(m, {g4, g5, t5, t4}, "WallSurface");
+  add_face(m, {g5, g0, t0, r0, t5}, "WallSurface");
+  add_face(m, {t0, t1, t2, t3, r1, r0}, "RoofSurface");
+  add_face(m, {r0, r1, t4, t5}, "RoofSurface");
+  const Result slice = run(m);
+  ASSERT_EQ(slice.b.status, "ok") << slice.b.reason;
+  ASSERT_TRUE(slice.level);
+  ASSERT_EQ(slice.level->parts.size(), 2u) << describe(slice);
+  EXPECT_EQ(slice.level->masses.size(), 1u) << describe(slice);
+  EXPECT_EQ(slice.b.massing.features.annexes, 0) << describe(slice);
+  const Result box_beside = run(join({gable_house(10, 10, 8, 11), box({10, 0, 0}, {12, 2, 9.2})}));
+  ASSERT_EQ(box_beside.b.status, "ok") << box_beside.b.reason;
+  ASSERT_TRUE(box_beside.level);
+  EXPECT_EQ(box_beside.b.massing.features.annexes, 1) << describe(box_beside);
+}
+
 // Cached outcomes carry the analytics exactly.
 TEST(Massing, JsonRoundTrip) {
   const Result r = run(join({box({0, 0, 0}, {30, 30, 6}), box({9, 9, 6}, {21, 21, 36})}));
