@@ -110,17 +110,17 @@ bool slice_of(const std::vector<uint32_t>& low, const std::vector<uint32_t>& hig
               double high_height, const std::vector<PartMassing>& P, const MassingParams& p) {
   if (low_height < p.slice_min_height_share * high_height) return false;
   if (low_part.width > p.slice_max_width_share * high_part.width) return false;
-  const double flat_cos = std::cos(p.stacked_angle_deg * M_PI / 180);
+  auto in_high_roof = [&](const RoofFace& f) {
+    return std::any_of(high.begin(), high.end(), [&](uint32_t j) {
+      return std::any_of(P[j].sloped_roof.begin(), P[j].sloped_roof.end(),
+                         [&](const RoofFace& g) { return coplanar(f, g); });
+    });
+  };
   double covered = 0, footprint = 0;  // in plan
   for (uint32_t i : low) {
     footprint += P[i].footprint_area;
-    for (const RoofFace& f : P[i].roof_faces) {
-      if (f.normal.z >= flat_cos) continue;  // a flat roof at another height is its own
-      bool found = false;
-      for (uint32_t j : high)
-        for (const RoofFace& g : P[j].roof_faces) found = found || coplanar(f, g);
-      if (found) covered += f.area * f.normal.z;
-    }
+    for (const RoofFace& f : P[i].sloped_roof)
+      if (in_high_roof(f)) covered += f.area * f.normal.z;
   }
   return footprint > 0 && covered >= p.slice_roof_share * footprint;
 }
@@ -175,11 +175,9 @@ void join_bodies(const std::vector<PartMassing>& P, const std::vector<PolygonMes
         std::max(p.mass_height_tolerance, p.mass_height_share * std::min(ahi - alo, bhi - blo));
     const bool same_top = std::abs(ahi - bhi) <= top_tol;
     const bool same_bottom = std::abs(alo - blo) <= p.mass_height_tolerance;
-    const bool a_low = ahi < bhi;
-    const bool slice =
-        !same_top && same_bottom &&
-        slice_of(members[a_low ? a : b], members[a_low ? b : a], P[a_low ? i : j], P[a_low ? j : i],
-                 a_low ? ahi - alo : bhi - blo, a_low ? bhi - blo : ahi - alo, P, p);
+    const bool slice = !same_top && same_bottom &&
+                       (ahi < bhi ? slice_of(members[a], members[b], P[i], P[j], ahi - alo, bhi - blo, P, p)
+                                  : slice_of(members[b], members[a], P[j], P[i], bhi - blo, ahi - alo, P, p));
     if (!slice && !one_volume(joint, same_top, same_bottom)) continue;
     join_masses(a, b, uf, members);
   }

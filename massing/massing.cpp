@@ -192,7 +192,8 @@ LevelMassing analyse_level(const std::vector<PolygonMesh>& meshes, const std::ve
       if (f.neighbour < 0 || static_cast<size_t>(f.neighbour) >= n || static_cast<size_t>(f.neighbour) == j) {
         own += area;
         if (std::abs(nrm.z) <= side_sin) walls += area;
-        if (nrm.z > side_sin && area > 0) pm.roof_faces.push_back({nrm, m.vertices[f.rings[0][0]], area});
+        if (nrm.z > side_sin && nrm.z < stacked_cos && area > 0)
+          pm.sloped_roof.push_back({nrm, m.vertices[f.rings[0][0]], area});
         if (nrm.z <= -stacked_cos && m.is_label(f.semantic, "GroundSurface")) ground_down += area;
         continue;
       }

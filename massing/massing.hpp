@@ -35,7 +35,8 @@ using KindAreas = std::map<std::string, std::pair<double, double>>;
 // stacked or inclined contact by the sign of its signed area.
 Contact contact_from(uint32_t other, const KindAreas& kinds);
 
-// One of a part's own roof faces (not a wall, not shared with another part): its plane and area.
+// One of a part's own sloped roof faces (neither a wall nor flat, not shared with another part):
+// its plane and area.
 struct RoofFace {
   Vec3 normal;  // unit, upward
   Vec3 point;   // a vertex of the face
@@ -55,11 +56,11 @@ struct PartMassing {
   // of its height (at least mass_height_tolerance): 1 for a flat top, less for a low step.
   double flat_top = 0;
   bool grounded = false;
-  std::vector<RoofFace> roof_faces;  // its own faces facing up, steeper than a wall is not
-  std::string role;                  // its mass's: main, wing, annex, podium, tower, roof, setback, rooftop
-  int mass = -1;                     // index into LevelMassing::masses
-  std::string piece = "body";        // body, roof (a roof piece of its mass) or layer (a thin skin)
-  std::vector<Contact> contacts;     // by neighbour index
+  std::vector<RoofFace> sloped_roof;  // its own sloped roof faces (a slice's test, masses.cpp)
+  std::string role;                   // its mass's: main, wing, annex, podium, tower, roof, setback, rooftop
+  int mass = -1;                      // index into LevelMassing::masses
+  std::string piece = "body";         // body, roof (a roof piece of its mass) or layer (a thin skin)
+  std::vector<Contact> contacts;      // by neighbour index
   mc::io::MultiPolygon2 footprint;
 };
 
