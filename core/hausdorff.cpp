@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -60,12 +61,24 @@ struct Samples {
 // point lies in a lattice cell with edges <= step. A lattice on a sliver would cost
 // (length/step)^2 points for almost no area, so slivers are first cut by longest-edge
 // bisection until the pieces are fat or short; their cost is then linear in their length.
-// With `s` null only counts the points into `count` (the same tests, so the same outcome).
-bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples* s, size_t& count) {
-  std::vector<std::array<K::Point_3, 3>> stack{{t[0], t[1], t[2]}};
+// Each kept piece goes to `emit(origin, e1, e2, n, weight)`, its points being origin + i·e1 + j·e2
+// (i + j <= n), each standing for `weight` of area; with `emit` null the points are only counted
+// into `count` (the same tests, so the same outcome).
+// A piece for which `skip(piece)` is true is dropped with all its points (counting never skips).
+using Piece = std::array<K::Point_3, 3>;
+struct NoSkip {
+  bool operator()(const Piece&) const { return false; }
+};
+template <class Emit, class Skip = NoSkip>
+bool lattice(const K::Triangle_3& t, double step, size_t budget, const Emit* emit, size_t& count,
+             const Skip& skip = Skip()) {
+  // The pieces still to cut, reused between calls (this runs once per triangle and step tried).
+  static thread_local std::vector<Piece> stack;
+  stack.assign(1, {t[0], t[1], t[2]});
   while (!stack.empty()) {
-    const auto tri = stack.back();
+    const Piece tri = stack.back();
     stack.pop_back();
+    if (skip(tri)) continue;
     int longest = 0;
     double len2 = -1;
     for (int i = 0; i < 3; ++i) {
@@ -94,36 +107,104 @@ bool sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples
     const K::Vector_3 e1 = (tri[1] - tri[0]) / n, e2 = (tri[2] - tri[0]) / n;
     const double w = area / ((n + 1.0) * (n + 2.0) / 2);
     count += static_cast<size_t>(n + 1) * static_cast<size_t>(n + 2) / 2;
-    if (s)
-      for (int i = 0; i <= n; ++i)
-        for (int j = 0; i + j <= n; ++j) {
-          s->points.push_back(tri[0] + i * e1 + j * e2);
-          s->weights.push_back(w);
-        }
+    if (emit) (*emit)(tri[0], e1, e2, n, w);
     if (count > budget) return false;
   }
   return true;
 }
 
-// Samples of all triangles; the step grows when `budget` would be exceeded. `*used` = step.
-Samples sample(const Triangles& tris, double step, size_t budget, double* used) {
-  // Every triangle gets at least its 3 corners, so the budget must allow that.
-  budget = std::max(budget, 4 * tris.size());
-  // The step is found by counting (cheap), and the points made once.
-  size_t total = 0;
+// A lattice point, computed as every caller computes it (the maxima are compared bit for bit).
+K::Point_3 lattice_point(const K::Point_3& o, const K::Vector_3& e1, const K::Vector_3& e2, int i, int j) {
+  return o + i * e1 + j * e2;
+}
+
+// The counting instance's (never called) type.
+using Emit = void (*)(const K::Point_3&, const K::Vector_3&, const K::Vector_3&, int, double);
+
+bool count_lattice(const K::Triangle_3& t, double step, size_t budget, size_t& count) {
+  return lattice<Emit>(t, step, budget, nullptr, count);
+}
+
+void sample_triangle(const K::Triangle_3& t, double step, size_t budget, Samples& s, size_t& count) {
+  const auto emit = [&s](const K::Point_3& o, const K::Vector_3& e1, const K::Vector_3& e2, int n, double w) {
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        s.points.push_back(lattice_point(o, e1, e2, i, j));
+        s.weights.push_back(w);
+      }
+  };
+  lattice(t, step, budget, &emit, count);
+}
+
+// Every triangle gets at least its 3 corners, so the budget must allow that.
+size_t budget_for(const Triangles& tris, size_t budget) { return std::max(budget, 4 * tris.size()); }
+
+// A lower bound of lattice()'s count at a step, from each triangle's longest edge and area alone.
+// A triangle lattice() never cuts (fat) has exactly (n + 1)(n + 2) / 2 points. A sliver's kept
+// pieces each have n = ceil(len / step) >= len / step subdivisions, so (n + 1)(n + 2) / 2 >= 3n
+// points and more than 2 · area / (√3 · step²) (a triangle's area is at most √3/4 of its longest
+// edge squared); halving a longest edge leaves each half at least half of it and the area is
+// shared, so the sliver holds at least 3 · len / step and 1.15 · area / step² points (both shrunk by
+// 10⁻⁶ for the halves' rounding).
+class CountBound {
+ public:
+  explicit CountBound(const Triangles& tris) {
+    for (const auto& t : tris) {
+      double len2 = -1;
+      for (int i = 0; i < 3; ++i)
+        len2 = std::max(len2, CGAL::to_double(CGAL::squared_distance(t[i], t[(i + 1) % 3])));
+      const double len = std::sqrt(len2);  // as lattice() computes them
+      const double area = std::sqrt(CGAL::to_double(t.squared_area()));
+      if (!std::isfinite(len) || !std::isfinite(area)) continue;
+      if (!(2 * area / len < len / 4)) fat_.push_back(len);
+      else sliver_.push_back({len * (1 - 1e-6), area * (1 - 1e-6)});
+    }
+  }
+  // True when the lattice at `step` certainly holds more than `budget` points.
+  bool exceeds(double step, size_t budget) const {
+    const double b = static_cast<double>(budget), most = std::sqrt(b) + 1;
+    double sum = 0;
+    for (double len : fat_) {
+      if (len / step > most) return true;  // lattice() fails on it
+      const double n = std::max(1.0, std::ceil(len / step));
+      sum += (n + 1) * (n + 2) / 2;
+    }
+    for (const auto& [len, area] : sliver_)
+      sum += std::max(3 * std::floor(len / step), 1.1547 * area / (step * step));
+    return sum > b;
+  }
+
+ private:
+  std::vector<double> fat_;                        // longest edges of the triangles never cut
+  std::vector<std::pair<double, double>> sliver_;  // longest edge and area of the others
+};
+
+// The step of sample(): `step`, grown until the lattice of all triangles fits the budget. Found by
+// counting (cheap; a step whose lower bound exceeds the budget is not even counted); `*total` = the
+// number of points at that step.
+double step_within(const Triangles& tris, double step, size_t budget, size_t* total) {
+  const CountBound bound(tris);
   for (;;) {
-    total = 0;
+    while (bound.exceeds(step, budget)) step *= 1.5;
+    *total = 0;
     bool ok = true;
     for (const auto& t : tris)
-      if (!(ok = sample_triangle(t, step, budget, nullptr, total))) break;
-    if (ok) break;
+      if (!(ok = count_lattice(t, step, budget, *total))) break;
+    if (ok) return step;
     step *= 1.5;
   }
+}
+
+// Samples of all triangles; the step grows when `budget` would be exceeded. `*used` = step.
+Samples sample(const Triangles& tris, double step, size_t budget, double* used) {
+  budget = budget_for(tris, budget);
+  size_t total = 0;
+  step = step_within(tris, step, budget, &total);
   Samples s;
   s.points.reserve(total);
   s.weights.reserve(total);
   size_t count = 0;
-  for (const auto& t : tris) sample_triangle(t, step, budget, &s, count);
+  for (const auto& t : tris) sample_triangle(t, step, budget, s, count);
   *used = step;
   return s;
 }
@@ -188,6 +269,10 @@ class ClosestPoints {
   ~ClosestPoints() { rtcReleaseScene(scene_); }
   ClosestPoints(const ClosestPoints&) = delete;
   ClosestPoints& operator=(const ClosestPoints&) = delete;
+
+  // The distance from p to triangle t, exact in doubles.
+  double distance_to(const Vec3& p, uint32_t t) const { return std::sqrt(squared(p, t)); }
+  double slack() const { return slack_; }
 
   // The distance from p to the nearest triangle; `hint` (a triangle index, updated) is tried
   // first: consecutive samples of one triangle mostly share their nearest triangle.
@@ -255,10 +340,92 @@ std::vector<double> distances(const ClosestPoints& to, const std::vector<K::Poin
   return d;
 }
 
-OneSided one_sided(const Triangles& from, const Triangles& to, double step) {
+Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
+
+// The maximum of sample()'s lattice with few closest-point queries. The distance to one triangle
+// t is convex, so over a piece of a triangle of `from` (a lattice row, a piece lattice() cuts, the
+// triangle itself) it is at most its largest value at the piece's corners, and the distance to the
+// soup is at most that for any t. With t among the triangles nearest to the triangle's corners and
+// the last one found nearest, a piece whose bound stays below the corners' maximum cannot hold the
+// lattice's maximum: its points need no query (the coincident surfaces of a cell and its input).
+// The corner holding the maximum is never skipped (every bound of it is at least its distance), so
+// the maximum is the full lattice's, bit for bit; the slack covers the rounding between a corner
+// and its lattice point.
+class LatticeMaximum {
+ public:
+  LatticeMaximum(const ClosestPoints& nearest, const uint32_t* candidates, double below)
+      : nearest_(nearest), cand_(candidates), below_(below), hint_(candidates[0]) {}
+
+  // The largest distance of a lattice point of `t` that can reach `below` (0 if none can).
+  double of(const K::Triangle_3& t, double step, size_t budget) {
+    const auto visit = [this](const K::Point_3& o, const K::Vector_3& e1, const K::Vector_3& e2, int n,
+                              double) { piece(o, e1, e2, n); };
+    const auto skip = [this](const Piece& p) { return settled({vec(p[0]), vec(p[1]), vec(p[2])}); };
+    size_t count = 0;
+    lattice(t, step, budget, &visit, count, skip);
+    return most_;
+  }
+
+ private:
+  // True when one known triangle is nearer than `below` at every point given (hence between them).
+  bool settled(std::initializer_list<Vec3> points) {
+    for (int c = -1; c < 3; ++c) {
+      const uint32_t t = c < 0 ? hint_ : cand_[c];
+      if (c >= 0 && t == hint_) continue;
+      bool all = true;
+      for (const Vec3& p : points) all = all && nearest_.distance_to(p, t) < below_;
+      if (all) {
+        hint_ = t;
+        return true;
+      }
+    }
+    return false;
+  }
+  void piece(const K::Point_3& o, const K::Vector_3& e1, const K::Vector_3& e2, int n) {
+    for (int a = 0; a <= n; ++a) {
+      if (settled({vec(lattice_point(o, e1, e2, a, 0)), vec(lattice_point(o, e1, e2, a, n - a))})) continue;
+      for (int b = 0; a + b <= n; ++b) {
+        const Vec3 p = vec(lattice_point(o, e1, e2, a, b));
+        if (!settled({p})) most_ = std::max(most_, nearest_.distance(p, hint_));
+      }
+    }
+  }
+  const ClosestPoints& nearest_;
+  const uint32_t* cand_;  // the nearest triangles of the triangle's three corners
+  double below_;
+  uint32_t hint_;  // the last triangle that settled a piece or was found nearest
+  double most_ = 0;
+};
+
+double lattice_maximum(const Triangles& from, const ClosestPoints& nearest, double step) {
+  const size_t budget = budget_for(from, kMeanSamples);
+  size_t total = 0;
+  step = step_within(from, step, budget, &total);
+  std::vector<double> d(3 * from.size());
+  std::vector<uint32_t> near(3 * from.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, from.size(), 128),
+                    with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
+                      uint32_t hint = UINT32_MAX;
+                      for (size_t i = 3 * r.begin(); i != 3 * r.end(); ++i) {
+                        d[i] = nearest.distance(vec(from[i / 3][i % 3]), hint);
+                        near[i] = hint;
+                      }
+                    }));
+  const double below = *std::max_element(d.begin(), d.end()) - 2 * nearest.slack();
+  std::vector<double> most(from.size(), 0);  // per triangle: the serial max below is thread-free
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, from.size(), 4),
+                    with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i)
+                        most[i] = LatticeMaximum(nearest, &near[3 * i], below).of(from[i], step, budget);
+                    }));
+  return *std::max_element(most.begin(), most.end());
+}
+
+OneSided one_sided(const Triangles& from, const Triangles& to, double step, bool means) {
   if (from.empty()) return {};
   if (to.empty()) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   const ClosestPoints nearest(to);
+  if (!means) return {lattice_maximum(from, nearest, step), 0};
   // Mean (and a first maximum) from a sampling of bounded size.
   double mean_step = step;
   const Samples s = sample(from, step, kMeanSamples, &mean_step);
@@ -278,15 +445,15 @@ OneSided one_sided(const Triangles& from, const Triangles& to, double step) {
 
 }  // namespace
 
-HausdorffResult hausdorff(const TriangleSoup& a, const TriangleSoup& b, double sampling_step) {
+HausdorffResult hausdorff(const TriangleSoup& a, const TriangleSoup& b, double sampling_step, bool means) {
   BBox box;
   for (const Vec3& v : a.vertices) box.add(v);
   for (const Vec3& v : b.vertices) box.add(v);
   const Vec3 origin = box.valid() ? box.center() : Vec3{};
   if (!(sampling_step > 0)) sampling_step = std::max(box.diagonal(), 1e-9) * 1e-3;
   const Triangles ta = triangles_of(a, origin), tb = triangles_of(b, origin);
-  const OneSided ab = one_sided(ta, tb, sampling_step);
-  const OneSided ba = one_sided(tb, ta, sampling_step);
+  const OneSided ab = one_sided(ta, tb, sampling_step, means);
+  const OneSided ba = one_sided(tb, ta, sampling_step, means);
   HausdorffResult r;
   r.a_to_b = ab.max;
   r.b_to_a = ba.max;

@@ -28,6 +28,10 @@ struct PreprocessParams {
   // surface's columns over it, core/column_volume.hpp) instead of sample points (docs/design.md
   // "Inside volume by columns"). Not a configuration key: tests compare with the votes.
   bool column_volumes = true;
+  // The fidelity measure's mean distances (core/hausdorff.hpp) besides its maxima. Not a
+  // configuration key: `morphcut` reports them; the city pipeline reports the maxima only and
+  // turns them off, which skips most of the measure's closest-point queries.
+  bool mean_distances = true;
 };
 
 struct DecomposeParams {

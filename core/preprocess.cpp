@@ -31,12 +31,13 @@ double seconds_since(Clock::time_point t0) {
 struct FidelityInputs {
   TriangleSoup input, cell;  // the input's triangles and the cell's boundary, centred frame
   double step = 0;           // sampling step
+  bool means = true;         // the mean distances too (PreprocessParams::mean_distances)
 };
 
 void measure_fidelity(Preprocessed& pre) {
   if (!pre.pending_fidelity) return;
   const FidelityInputs& f = *pre.pending_fidelity;
-  const HausdorffResult h = hausdorff(f.input, f.cell, f.step);
+  const HausdorffResult h = hausdorff(f.input, f.cell, f.step, f.means);
   pre.hausdorff = h.symmetric;
   pre.hausdorff_in_to_cell = h.a_to_b;
   pre.hausdorff_cell_to_in = h.b_to_a;
@@ -108,6 +109,7 @@ void check_singleton(const TriangleSoup& input_triangles, const PreprocessParams
   boundary_triangles(*out.complex, all, Vec3{}, f->cell.vertices, f->cell.triangles);
   f->step = std::max(out.box.diagonal() * p.hausdorff_error * 10, out.cell_size / 2);
   f->input = input_triangles;
+  f->means = p.mean_distances;
   out.pending_fidelity = std::move(f);
 }
 

@@ -125,7 +125,9 @@ Preprocessed preprocess_building(BuildingOutcome& out, const mc::io::BuildingInp
   try {
     // (terrain: pipeline/terrain.hpp; the fidelity measure runs beside the levels)
     const double terrain = terrain_height(out.feature) * h.coords.vertical_unit;  // metres
-    pre = preprocess(in.mesh, p.pre, deadline, terrain, /*defer_fidelity=*/true);
+    PreprocessParams pp = p.pre;
+    pp.mean_distances = false;  // the outputs carry the fidelity's maxima only
+    pre = preprocess(in.mesh, pp, deadline, terrain, /*defer_fidelity=*/true);
   } catch (const std::exception& e) {
     // Carving cut short by the deadline finds no inside cell: the deadline is the reason.
     if (Clock::now() >= deadline)

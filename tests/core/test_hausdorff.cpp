@@ -148,5 +148,36 @@ TEST(Hausdorff, GeoreferencedSample) {
   }
 }
 
+// Without the means only the triangles that can hold the maximum are sampled: the maxima are the
+// full lattice's bit for bit, on every sample against its noisy, shifted and rotated copy (some
+// triangles far, some on the other surface, the maximum anywhere).
+TEST(Hausdorff, MaximaWithoutMeansAreTheFullLattices) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  int compared = 0;
+  for (const auto& s : test::samples()) {
+    const PolygonMesh m = clean_soup(test::load_off(s.off.string()), 1e-6, nullptr);
+    const TriangleSoup a = triangulate(m);
+    TriangleSoup b = a;
+    const double c = std::cos(0.01), sn = std::sin(0.01);
+    for (Vec3& v : b.vertices)
+      v = Vec3{c * v.x - sn * v.y, sn * v.x + c * v.y, v.z} + Vec3{0, 0, jitter(rng)};
+    for (const double step : {0.0, 0.5}) {
+      const HausdorffResult full = hausdorff(a, b, step), maxima = hausdorff(a, b, step, false);
+      EXPECT_EQ(full.a_to_b, maxima.a_to_b) << s.name;
+      EXPECT_EQ(full.b_to_a, maxima.b_to_a) << s.name;
+      EXPECT_EQ(full.symmetric, maxima.symmetric) << s.name;
+      EXPECT_EQ(maxima.mean_a_to_b, 0);
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 20);
+  const TriangleSoup sq = triangulate(test::box({0, 0, 0}, {1, 1, 1}));
+  PolygonMesh shifted = test::box({0, 0, 0}, {1, 1, 1});
+  translate(shifted, {0.1, 0, 0});
+  const HausdorffResult r = hausdorff(sq, triangulate(shifted), 0.01, false);
+  EXPECT_NEAR(r.symmetric, 0.1, 1e-9);
+}
+
 }  // namespace
 }  // namespace mc
