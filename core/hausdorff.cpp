@@ -401,14 +401,23 @@ double lattice_maximum(const Triangles& from, const ClosestPoints& nearest, doub
   const size_t budget = budget_for(from, kMeanSamples);
   size_t total = 0;
   step = step_within(from, step, budget, &total);
-  std::vector<double> d(3 * from.size());
+  // Each distinct corner is queried once (a vertex is a corner of about six triangles).
+  std::vector<uint32_t> order(3 * from.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto corner = [&](uint32_t i) -> const K::Point_3& { return from[i / 3][i % 3]; };
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return corner(a) < corner(b); });
+  std::vector<uint32_t> first;  // the positions in `order` where a distinct corner starts
+  for (uint32_t k = 0; k < order.size(); ++k)
+    if (k == 0 || corner(order[k - 1]) != corner(order[k])) first.push_back(k);
+  first.push_back(static_cast<uint32_t>(order.size()));
+  std::vector<double> d(first.size() - 1);
   std::vector<uint32_t> near(3 * from.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, from.size(), 128),
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, d.size(), 128),
                     with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
                       uint32_t hint = UINT32_MAX;
-                      for (size_t i = 3 * r.begin(); i != 3 * r.end(); ++i) {
-                        d[i] = nearest.distance(vec(from[i / 3][i % 3]), hint);
-                        near[i] = hint;
+                      for (size_t u = r.begin(); u != r.end(); ++u) {
+                        d[u] = nearest.distance(vec(corner(order[first[u]])), hint);
+                        for (uint32_t k = first[u]; k < first[u + 1]; ++k) near[order[k]] = hint;
                       }
                     }));
   const double below = *std::max_element(d.begin(), d.end()) - 2 * nearest.slack();
