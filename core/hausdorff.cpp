@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -353,10 +354,12 @@ Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 // and its lattice point.
 class LatticeMaximum {
  public:
-  LatticeMaximum(const ClosestPoints& nearest, const uint32_t* candidates, double below)
-      : nearest_(nearest), cand_(candidates), below_(below), hint_(candidates[0]) {}
+  // `bar`: the largest distance found so far less the slack, shared by the triangles' searches
+  // (raised as they find more; a point under it cannot be the maximum, whatever the order).
+  LatticeMaximum(const ClosestPoints& nearest, const uint32_t* candidates, std::atomic<double>& bar)
+      : nearest_(nearest), cand_(candidates), bar_(bar), slack_(2 * nearest.slack()), hint_(candidates[0]) {}
 
-  // The largest distance of a lattice point of `t` that can reach `below` (0 if none can).
+  // The largest distance of a lattice point of `t` that can reach the bar (0 if none can).
   double of(const K::Triangle_3& t, double step, size_t budget) {
     const auto visit = [this](const K::Point_3& o, const K::Vector_3& e1, const K::Vector_3& e2, int n,
                               double) { piece(o, e1, e2, n); };
@@ -367,13 +370,14 @@ class LatticeMaximum {
   }
 
  private:
-  // True when one known triangle is nearer than `below` at every point given (hence between them).
+  // True when one known triangle is nearer than the bar at every point given (hence between them).
   bool settled(std::initializer_list<Vec3> points) {
+    const double below = bar_.load(std::memory_order_relaxed);
     for (int c = -1; c < 3; ++c) {
       const uint32_t t = c < 0 ? hint_ : cand_[c];
       if (c >= 0 && t == hint_) continue;
       bool all = true;
-      for (const Vec3& p : points) all = all && nearest_.distance_to(p, t) < below_;
+      for (const Vec3& p : points) all = all && nearest_.distance_to(p, t) < below;
       if (all) {
         hint_ = t;
         return true;
@@ -386,13 +390,20 @@ class LatticeMaximum {
       if (settled({vec(lattice_point(o, e1, e2, a, 0)), vec(lattice_point(o, e1, e2, a, n - a))})) continue;
       for (int b = 0; a + b <= n; ++b) {
         const Vec3 p = vec(lattice_point(o, e1, e2, a, b));
-        if (!settled({p})) most_ = std::max(most_, nearest_.distance(p, hint_));
+        if (settled({p})) continue;
+        const double d = nearest_.distance(p, hint_);
+        if (!(d > most_)) continue;
+        most_ = d;
+        const double raised = d - slack_;
+        for (double now = bar_.load(std::memory_order_relaxed); raised > now;)
+          if (bar_.compare_exchange_weak(now, raised, std::memory_order_relaxed)) break;
       }
     }
   }
   const ClosestPoints& nearest_;
   const uint32_t* cand_;  // the nearest triangles of the triangle's three corners
-  double below_;
+  std::atomic<double>& bar_;
+  double slack_;
   uint32_t hint_;  // the last triangle that settled a piece or was found nearest
   double most_ = 0;
 };
@@ -420,12 +431,12 @@ double lattice_maximum(const Triangles& from, const ClosestPoints& nearest, doub
                         for (uint32_t k = first[u]; k < first[u + 1]; ++k) near[order[k]] = hint;
                       }
                     }));
-  const double below = *std::max_element(d.begin(), d.end()) - 2 * nearest.slack();
+  std::atomic<double> bar{*std::max_element(d.begin(), d.end()) - 2 * nearest.slack()};
   std::vector<double> most(from.size(), 0);  // per triangle: the serial max below is thread-free
   tbb::parallel_for(tbb::blocked_range<size_t>(0, from.size(), 4),
                     with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
                       for (size_t i = r.begin(); i != r.end(); ++i)
-                        most[i] = LatticeMaximum(nearest, &near[3 * i], below).of(from[i], step, budget);
+                        most[i] = LatticeMaximum(nearest, &near[3 * i], bar).of(from[i], step, budget);
                     }));
   return *std::max_element(most.begin(), most.end());
 }
