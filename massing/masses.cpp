@@ -52,15 +52,19 @@ std::vector<Vec3> vertices_of(const std::vector<uint32_t>& members, const std::v
 // A façade zone: a strip under twice thin_width wide, at least three times as long, lining a larger
 // part from its base (bottoms within mass_height_tolerance) along its long side (a vertical face
 // shared over half its length x height) up to more than half that part's height: a gallery, a zone
-// of bays, a façade layer thicker than a skin. A low strip along a wall (a lean-to) is an annex; a
-// strip standing on a lower part beside the wall, a storey of what it stands on.
+// of bays, a façade layer thicker than a skin. A low strip along a wall (a lean-to) is an annex when
+// it stands on the ground; raised, beside an upper storey on the same floor (a terrace edge, the
+// foot of a mansard), it is that storey's at any height, since a raised mass of its own would be a
+// rooftop unit (docs/massing.md, "Masses"). A strip standing on a lower part beside the wall is a
+// storey of what it stands on.
 bool facade_zone(const PartMassing& pm, const std::vector<PartMassing>& P, const MassingParams& p) {
   if (!(pm.width < 2 * p.thin_width) || pm.length < 3 * pm.width) return false;
   for (const Contact& c : pm.contacts) {
     const PartMassing& o = P[c.other];
     if (c.kind == "side" && c.area >= 0.5 * pm.length * height(pm) &&
         o.footprint_area >= 2 * pm.footprint_area &&
-        std::abs(pm.z_min - o.z_min) <= p.mass_height_tolerance && pm.z_max > (o.z_min + o.z_max) / 2)
+        std::abs(pm.z_min - o.z_min) <= p.mass_height_tolerance &&
+        (pm.z_max > (o.z_min + o.z_max) / 2 || !pm.grounded))
       return true;
   }
   return false;

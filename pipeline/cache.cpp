@@ -32,8 +32,9 @@ namespace {
 // 4: a level's result in the report's schema (report/level_json.hpp); 5: masses (docs/massing.md);
 // 6: parts of valid solids labelled by exact inside volumes (docs/design.md), masses across layers
 // and storeys (docs/massing.md): entries of the same version written before hold other parts;
-// 7: slices under a slope join their body's mass (docs/massing.md)
-constexpr int kFormat = 7;
+// 7: slices under a slope join their body's mass; 8: raised low strips beside an upper storey are
+// its layers (docs/massing.md)
+constexpr int kFormat = 8;
 
 // Settings that do not change a complete result: worker threads, buildings in flight, logging
 // (outputs are byte-identical for any thread count). Everything else in the effective config is

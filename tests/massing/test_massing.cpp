@@ -273,6 +273,21 @@ TEST(Massing, FacadeZoneIsALayerAndALowStripAnAnnex) {
   EXPECT_EQ(lean.b.massing.features.annexes, 1) << describe(lean);
 }
 
+// An upper storey on a base with a low 1.6 m strip along its whole side on the same floor (a terrace
+// edge, the foot of a mansard): raised, the strip is a layer of the storey, not a rooftop unit,
+// though it rises only to the storey's lower half (docs/massing.md, "Masses", step 1).
+TEST(Massing, LowStripBesideAnUpperStoreyIsALayerOfIt) {
+  const Result r = run(join(
+      {box({0, 0, 0}, {20, 20, 11}), box({2, 2, 11}, {18, 16, 15.4}), box({2, 16, 11}, {18, 17.6, 13})}));
+  ASSERT_EQ(r.b.status, "ok") << r.b.reason;
+  ASSERT_TRUE(r.level);
+  ASSERT_EQ(r.level->parts.size(), 3u) << describe(r);
+  EXPECT_EQ(r.level->masses.size(), 2u) << describe(r);
+  EXPECT_EQ(r.roles, (Roles{{"main", 1}, {"setback", 2}})) << describe(r);
+  EXPECT_EQ(r.b.massing.features.rooftop_units, 0) << describe(r);
+  EXPECT_EQ(r.b.massing.features.setbacks, 1) << describe(r);
+}
+
 // Two flat blocks side by side whose tops differ by 0.8 m: one mass when they are 19 m tall (a
 // small step for the height, mass_height_share), two when they are 6 m tall.
 TEST(Massing, SmallStepOnATallBlockIsOneMass) {
