@@ -330,18 +330,17 @@ class ClosestPoints {
   RTCScene scene_ = nullptr;
 };
 
+Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
+
 std::vector<double> distances(const ClosestPoints& to, const std::vector<K::Point_3>& pts) {
   std::vector<double> d(pts.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, d.size(), 1024),
                     with_thread_tag([&](const tbb::blocked_range<size_t>& r) {
                       uint32_t hint = UINT32_MAX;
-                      for (size_t i = r.begin(); i != r.end(); ++i)
-                        d[i] = to.distance({pts[i].x(), pts[i].y(), pts[i].z()}, hint);
+                      for (size_t i = r.begin(); i != r.end(); ++i) d[i] = to.distance(vec(pts[i]), hint);
                     }));
   return d;
 }
-
-Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
 // The maximum of sample()'s lattice with few closest-point queries. The distance to one triangle
 // t is convex, so over a piece of a triangle of `from` (a lattice row, a piece lattice() cuts, the

@@ -99,11 +99,12 @@ std::string deadline_reason(const Params& p, const char* where) {
   return "deadline (timeout_s=" + fmt_seconds(p.timeout_s) + ") reached " + where;
 }
 
-// The building's parameters with the output grid's step near it (docs/algorithm.md §7.4), and its
-// deadline.
-Params with_output_grid(const Params& params, const mc::io::Header& h, const WorkingFrame& frame,
-                        const PolygonMesh& mesh) {
+// The building's parameters: the output grid's step near it (docs/algorithm.md §7.4), and the
+// fidelity's maxima only (the outputs carry no mean distance).
+Params building_params(const Params& params, const mc::io::Header& h, const WorkingFrame& frame,
+                       const PolygonMesh& mesh) {
   Params p = params;
+  p.pre.mean_distances = false;
   if (!mesh.vertices.empty())
     p.pre.output_grid = grid_step_metres(mc::io::parse_transform(h.root, "header"), frame,
                                          frame.to_file(mesh.vertices.front()));
@@ -125,9 +126,7 @@ Preprocessed preprocess_building(BuildingOutcome& out, const mc::io::BuildingInp
   try {
     // (terrain: pipeline/terrain.hpp; the fidelity measure runs beside the levels)
     const double terrain = terrain_height(out.feature) * h.coords.vertical_unit;  // metres
-    PreprocessParams pp = p.pre;
-    pp.mean_distances = false;  // the outputs carry the fidelity's maxima only
-    pre = preprocess(in.mesh, pp, deadline, terrain, /*defer_fidelity=*/true);
+    pre = preprocess(in.mesh, p.pre, deadline, terrain, /*defer_fidelity=*/true);
   } catch (const std::exception& e) {
     // Carving cut short by the deadline finds no inside cell: the deadline is the reason.
     if (Clock::now() >= deadline)
@@ -235,7 +234,7 @@ void set_status(BuildingOutcome& out, const Decomposition& dec, const Preprocess
 // The decomposing part of the job; throws on failure (the caller turns that into "failed").
 void decompose_building(BuildingOutcome& out, const mc::io::BuildingInput& in, const mc::io::Header& h,
                         const WorkingFrame& frame, const Params& params, const RunConfig& rc) {
-  const Params p = with_output_grid(params, h, frame, in.mesh);
+  const Params p = building_params(params, h, frame, in.mesh);
   const auto deadline = deadline_of(p);
   Preprocessed pre = preprocess_building(out, in, h, p, deadline);
   const Decomposition dec = decompose_levels(out, pre, p, deadline);
