@@ -139,78 +139,128 @@ BBox points_box(const std::vector<Vec3>& pts, const std::vector<uint32_t>& order
   return b;
 }
 
-// Step 1: the regions. Permutes `order` so that every leaf is a range of it. The points are split
-// by the midpoint of their box's longest side; each box tests only the triangles that touched its
-// parent, so the tree is queried once per cell (docs/design.md "Regions, not points").
-std::vector<RegionLeaf> split_regions(const std::vector<Vec3>& pts, size_t batch, const SurfaceIndex& surface,
-                                      std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
-                                      std::vector<uint32_t>& order) {
+// Step 1: the regions, one level of boxes at a time. Permutes `order` so that every leaf is a
+// range of it. The points are split by the midpoint of their box's longest side; each box tests
+// only the triangles that touched its parent, so the tree is queried once per cell
+// (docs/design.md "Regions, not points"). Each box partitions only its own range, so the leaves
+// and the order are the same whatever order the boxes are split in.
+class RegionSplit {
+ public:
+  RegionSplit(const std::vector<Vec3>& pts, size_t batch, const SurfaceIndex& surface,
+              std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
+              std::vector<uint32_t>& order)
+      : pts_(pts), batch_(batch), surface_(surface), slab_(slab), oracle_box_(oracle_box), order_(order) {
+    lists_.push_back(std::move(triangles));
+    const uint32_t n = static_cast<uint32_t>(pts.size());
+    level_.push_back({0, n, 0, n > batch ? points_box(pts, order, 0, n) : BBox{}});
+  }
+
+  // Splits every box of the current level, appending the leaves it makes. Returns whether boxes
+  // are left for another level.
+  bool next_level(std::vector<RegionLeaf>& leaves) {
+    std::vector<Node> next;
+    for (const Node& nd : level_) split(nd, leaves, next);
+    level_ = std::move(next);
+    return !level_.empty();
+  }
+
+ private:
   struct Node {
     uint32_t begin, end;  // range of `order`
-    uint32_t list;        // the parent's touching triangles, in `lists`
+    uint32_t list;        // the parent's touching triangles, in `lists_`
+    BBox box;             // the tight box of the range's points
   };
-  std::vector<std::vector<uint32_t>> lists{std::move(triangles)};
-  std::vector<RegionLeaf> leaves;
-  std::vector<Node> stack{{0, static_cast<uint32_t>(pts.size()), 0}};
-  std::vector<uint32_t> narrowed;
-  while (!stack.empty()) {
-    const Node nd = stack.back();
-    stack.pop_back();
-    if (nd.end - nd.begin <= batch) {
+
+  void split(const Node& nd, std::vector<RegionLeaf>& leaves, std::vector<Node>& next) {
+    if (nd.end - nd.begin <= batch_) {
       leaves.push_back({nd.begin, nd.end, false});
-      continue;
+      return;
     }
-    const BBox b = points_box(pts, order, nd.begin, nd.end);
-    const bool straddles = oracle_box.valid() && oracle_box.overlaps(b) && !oracle_box.contains(b);
-    surface.touching(b, lists[nd.list], narrowed);
-    if (narrowed.empty() && !straddles) {
+    const BBox& b = nd.box;
+    const bool straddles = oracle_box_.valid() && oracle_box_.overlaps(b) && !oracle_box_.contains(b);
+    surface_.touching(b, lists_[nd.list], narrowed_);
+    if (narrowed_.empty() && !straddles) {
       leaves.push_back({nd.begin, nd.end, true});
-      continue;
+      return;
     }
     // Every triangle in the box within `slab` of one plane: the box's points beyond the slab on
     // either side lie in a convex region the surface does not cross (uniform); those in the
     // slab are classified one by one.
     Plane pl;
-    if (!straddles && surface.common_plane(narrowed, slab, pl)) {
-      auto first = order.begin() + nd.begin, last = order.begin() + nd.end;
+    if (!straddles && surface_.common_plane(narrowed_, slab_, pl)) {
+      auto first = order_.begin() + nd.begin, last = order_.begin() + nd.end;
       const auto below =
-          std::partition(first, last, [&](uint32_t i) { return pl.signed_distance(pts[i]) < -slab; });
+          std::partition(first, last, [&](uint32_t i) { return pl.signed_distance(pts_[i]) < -slab_; });
       const auto within =
-          std::partition(below, last, [&](uint32_t i) { return pl.signed_distance(pts[i]) <= slab; });
-      const uint32_t u = static_cast<uint32_t>(below - order.begin()),
-                     w = static_cast<uint32_t>(within - order.begin());
+          std::partition(below, last, [&](uint32_t i) { return pl.signed_distance(pts_[i]) <= slab_; });
+      const uint32_t u = static_cast<uint32_t>(below - order_.begin()),
+                     w = static_cast<uint32_t>(within - order_.begin());
       if (u > nd.begin) leaves.push_back({nd.begin, u, true});
       if (w > u) leaves.push_back({u, w, false});
       if (nd.end > w) leaves.push_back({w, nd.end, true});
-      continue;
+      return;
     }
     const Vec3 ext = b.hi - b.lo;
     const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
     auto coord = [axis](const Vec3& v) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
     const double mid = 0.5 * (coord(b.lo) + coord(b.hi));
-    const auto cut = std::partition(order.begin() + nd.begin, order.begin() + nd.end,
-                                    [&](uint32_t i) { return coord(pts[i]) < mid; });
-    const uint32_t c = static_cast<uint32_t>(cut - order.begin());
+    // The children's tight boxes are gathered by the partition itself, which tests each point
+    // exactly once (one pass over the points instead of three).
+    BBox halves[2];
+    auto grow = [](BBox& h, const Vec3& v) {  // an empty BBox holds ±1e300: min and max start it
+      h.lo = {std::min(h.lo.x, v.x), std::min(h.lo.y, v.y), std::min(h.lo.z, v.z)};
+      h.hi = {std::max(h.hi.x, v.x), std::max(h.hi.y, v.y), std::max(h.hi.z, v.z)};
+    };
+    const auto cut = std::partition(order_.begin() + nd.begin, order_.begin() + nd.end, [&](uint32_t i) {
+      const bool low = coord(pts_[i]) < mid;
+      grow(halves[low ? 0 : 1], pts_[i]);
+      return low;
+    });
+    const uint32_t c = static_cast<uint32_t>(cut - order_.begin());
     if (c == nd.begin || c == nd.end) {  // coincident points: no split separates them
       leaves.push_back({nd.begin, nd.end, false});
-      continue;
+      return;
     }
-    const uint32_t list = static_cast<uint32_t>(lists.size());
-    lists.push_back(narrowed);
-    stack.push_back({c, nd.end, list});
-    stack.push_back({nd.begin, c, list});
+    const uint32_t list = static_cast<uint32_t>(lists_.size());
+    lists_.push_back(narrowed_);
+    next.push_back({nd.begin, c, list, halves[0]});
+    next.push_back({c, nd.end, list, halves[1]});
   }
-  return leaves;
-}
+
+  const std::vector<Vec3>& pts_;
+  const size_t batch_;
+  const SurfaceIndex& surface_;
+  const double slab_;
+  const BBox& oracle_box_;
+  std::vector<uint32_t>& order_;
+  std::vector<std::vector<uint32_t>> lists_;
+  std::vector<Node> level_;
+  std::vector<uint32_t> narrowed_;
+};
+
+}  // namespace
 
 // Step 2: how many points are inside. Round 1 classifies the representatives of the untouched
 // leaves. Representatives that disagree mark a region where the oracle itself is not constant
 // (rays escaping through gaps of an open or non-manifold input): its other points are classified
-// one by one in round 2, with the points of the touched leaves, as a full vote would.
-size_t count_by_regions(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch,
-                        const std::vector<RegionLeaf>& leaves, const std::vector<uint32_t>& order,
-                        const PointClassifier& classify, size_t& classified) {
+// one by one in round 2, with the points of the touched leaves, as a full vote would. A vote that
+// may stop classifies each level's representatives as soon as the level is split, and stops once
+// what they settle holds both labels `mixed_at` times: a settled leaf's points and an unsettled
+// leaf's representatives count in the end whatever round 2 finds.
+RegionCount region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch,
+                        const SurfaceIndex& surface, std::vector<uint32_t> triangles, double slab,
+                        const BBox& oracle_box, const PointClassifier& classify, size_t& classified,
+                        size_t mixed_at) {
+  if (pts.empty()) return {};
+  std::vector<uint32_t> order(pts.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  RegionSplit regions(pts, batch, surface, std::move(triangles), slab, oracle_box, order);
+  std::vector<RegionLeaf> leaves;
+  std::vector<size_t> yes;  // per leaf: its representatives inside
   auto ask = [&](const RegionLeaf& l) { return l.uniform ? std::min<size_t>(batch, l.end - l.begin) : 0; };
+  auto settled = [&](size_t li) {
+    return leaves[li].uniform && (yes[li] == 0 || yes[li] == ask(leaves[li]));
+  };
   std::vector<Vec3> q;
   std::vector<uint64_t> ids;
   auto add = [&](uint32_t from, uint32_t to) {
@@ -219,19 +269,34 @@ size_t count_by_regions(const std::vector<Vec3>& pts, uint64_t first_id, size_t 
       ids.push_back(first_id + order[k]);
     }
   };
-  for (const RegionLeaf& l : leaves) add(l.begin, l.begin + static_cast<uint32_t>(ask(l)));
-  std::vector<uint8_t> reps;
-  if (!q.empty()) classify(q, ids, reps);
-  classified += q.size();
-  std::vector<size_t> yes(leaves.size(), 0);
-  for (size_t li = 0, at = 0; li < leaves.size(); ++li) {
-    const size_t asked = ask(leaves[li]);
-    for (size_t k = 0; k < asked; ++k) yes[li] += reps[at + k] != 0;
-    at += asked;
-  }
-  auto settled = [&](size_t li) {
-    return leaves[li].uniform && (yes[li] == 0 || yes[li] == ask(leaves[li]));
+  RegionCount known{0, 0, false};
+  // Round 1 for the leaves found since the last call.
+  auto representatives = [&] {
+    const size_t from = yes.size();
+    q.clear();
+    ids.clear();
+    for (size_t li = from; li < leaves.size(); ++li)
+      add(leaves[li].begin, leaves[li].begin + static_cast<uint32_t>(ask(leaves[li])));
+    std::vector<uint8_t> reps;
+    if (!q.empty()) classify(q, ids, reps);
+    classified += q.size();
+    yes.resize(leaves.size(), 0);
+    for (size_t li = from, at = 0; li < leaves.size(); ++li) {
+      const size_t asked = ask(leaves[li]);
+      for (size_t k = 0; k < asked; ++k) yes[li] += reps[at + k] != 0;
+      at += asked;
+      const size_t m = settled(li) ? leaves[li].end - leaves[li].begin : asked;
+      const size_t y = settled(li) ? (yes[li] ? m : 0) : yes[li];
+      known.in += y;
+      known.out += m - y;
+    }
+    return mixed_at > 0 && known.in >= mixed_at && known.out >= mixed_at;
   };
+  for (bool more = true; more;) {
+    more = regions.next_level(leaves);
+    if ((mixed_at > 0 || !more) && representatives()) return known;
+  }
+  // Round 2.
   q.clear();
   ids.clear();
   for (size_t li = 0; li < leaves.size(); ++li)
@@ -249,19 +314,7 @@ size_t count_by_regions(const std::vector<Vec3>& pts, uint64_t first_id, size_t 
     in += yes[li];
     for (size_t k = ask(leaves[li]); k < m; ++k) in += rest[r++] != 0;
   }
-  return in;
-}
-
-}  // namespace
-
-size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch, const SurfaceIndex& surface,
-                   std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
-                   const PointClassifier& classify, size_t& classified) {
-  if (pts.empty()) return 0;
-  std::vector<uint32_t> order(pts.size());
-  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  const auto leaves = split_regions(pts, batch, surface, std::move(triangles), slab, oracle_box, order);
-  return count_by_regions(pts, first_id, batch, leaves, order, classify, classified);
+  return {in, pts.size() - in, true};
 }
 
 std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, uint64_t seed) {
@@ -316,6 +369,8 @@ namespace {
 struct CellVote {
   bool inside = false;
   double score = 0;
+  bool partial = false;  // stopped once inconsistent: label and score are estimates
+  float share = 0;       // the inside share r
 };
 
 // The carving's constants, derived once from its parameters and the root cell.
@@ -329,6 +384,7 @@ struct CarveScale {
 // A cell's label and inconsistent volume from its inside share `r` (volume `v`, box `box`).
 CellVote score_vote(double r, double v, const BBox& box, const CarveParams& p, const CarveScale& k) {
   CellVote out;
+  out.share = static_cast<float>(r);
   out.inside = r > p.inside_vote;
   out.score = out.inside ? v * (1 - r) : v * r;
   // An inside cell reaching more than δ out of the oracle's box has air in it for sure (beyond
@@ -401,7 +457,7 @@ std::optional<CellVote> measured_vote(const CellComplex& cx, uint32_t c, const B
 // other is voted by regions (parity) or point by point. Reentrant for distinct cells whose volume
 // and centroid are measured (CellComplex caches them lazily).
 CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const CarveParams& p,
-                   const CarveScale& k, const PointClassifier& classify, size_t& points) {
+                   const CarveScale& k, const PointClassifier& classify, size_t& points, bool may_stop) {
   const double v = cx.cell_volume(c);
   const long n = std::clamp<long>(static_cast<long>(std::ceil(v / k.unit)), p.min_points, p.max_points);
   const bool touched = !p.surface_touches || p.vote_batch <= 0 || p.surface_touches(box);
@@ -420,8 +476,25 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
   const bool grazed = !free_cell && p.surface_enters && p.vote_batch > 0 &&
                       band_vote(outward, box, pts, first_id, p, classify, in, points);
   if (!grazed && !free_cell && p.regions && p.vote_batch > 0) {
-    in = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
-                     p.regions->entering(outward, box, k.hair), k.hair, p.oracle_box, classify, points);
+    // The score queues a cell when more than `inconsistency` c³ of it is mislabelled, i.e. when
+    // both labels hold more than that volume's share of the n points.
+    const size_t mixed_at =
+        may_stop ? static_cast<size_t>(std::floor(p.inconsistency * k.unit * static_cast<double>(n) / v)) + 1
+                 : 0;
+    const RegionCount count = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
+                                          p.regions->entering(outward, box, k.hair), k.hair, p.oracle_box,
+                                          classify, points, mixed_at);
+    if (!count.complete) {
+      // The label and the score (only the queue's order reads it) are estimated with the
+      // unsettled points counted half inside: the settled ones alone lie away from the surface
+      // and bias the order (docs/design.md). The score still exceeds the inconsistency bound.
+      CellVote out = score_vote(
+          (double(count.in) + 0.5 * double(pts.size() - count.in - count.out)) / double(pts.size()), v, box,
+          p, k);
+      out.partial = true;
+      return out;
+    }
+    in = count.in;
   } else if (!grazed) {
     std::vector<uint64_t> ids(pts.size());
     std::vector<uint8_t> flags;
@@ -437,7 +510,7 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
 // The plane that cuts a queued cell: the largest remaining region plane that really crosses it.
 // Planes passed over only because of a hair-close vertex move to `deferred` (they stay for the
 // sub-cells). Returns the index into `remaining`, or nothing.
-std::optional<size_t> choose_plane(const CellComplex& cx, uint32_t c, double score,
+std::optional<size_t> choose_plane(const CellComplex& cx, uint32_t c, const std::function<double()>& score,
                                    const std::vector<uint32_t>& remaining,
                                    const std::vector<CarvePlane>& planes, const CarveParams& p,
                                    const CarveScale& k, std::vector<uint32_t>& deferred) {
@@ -454,7 +527,7 @@ std::optional<size_t> choose_plane(const CellComplex& cx, uint32_t c, double sco
   // mislabelled cells: cutting every such cell makes parts less convex, and gaps below min_gap
   // (fitting noise) break parts when quantised (docs/algorithm.md §7.4, docs/design.md "Valid
   // solids at every step").
-  if (p.min_gap <= 0 || score < kHairCutShare * cx.cell_volume(c)) return std::nullopt;
+  if (p.min_gap <= 0 || score() < kHairCutShare * cx.cell_volume(c)) return std::nullopt;
   auto it = std::find_if(deferred.begin(), deferred.end(), [&](uint32_t q) {
     return hair_gap(cx, cv, planes[q], k.hair, k.outer) >= p.min_gap;
   });
@@ -463,6 +536,31 @@ std::optional<size_t> choose_plane(const CellComplex& cx, uint32_t c, double sco
       static_cast<size_t>(std::find(remaining.begin(), remaining.end(), *it) - remaining.begin());
   deferred.erase(it);
   return i;
+}
+
+// Votes the two children of a split at once, each with its own points (the same ids and labels
+// as one after the other; docs/algorithm.md §7.3), after finding the planes of `remaining` that
+// still cross each (`kept`). A child without planes left is never split: its vote is complete.
+// Returns the oracle's queries.
+size_t vote_children(const CellComplex& cx, const uint32_t (&child)[2],
+                     const std::vector<uint32_t>& remaining, const std::vector<CarvePlane>& planes,
+                     const CarveParams& p, const CarveScale& k, const PointClassifier& classify,
+                     std::vector<uint32_t> (&kept)[2], CellVote (&votes)[2]) {
+  BBox box[2];
+  for (int j = 0; j < 2; ++j) {
+    const CellVertices cv_child(cx, child[j]);
+    for (uint32_t q : remaining)
+      if (crosses(cx, cv_child, planes[q], p.dist, k.hair, k.outer) != Crossing::No) kept[j].push_back(q);
+    box[j] = cv_child.box;
+    cx.cell_volume(child[j]);  // measured (and cached) before the votes read it
+  }
+  size_t points[2] = {0, 0};
+  auto vote = [&](int j) {
+    return with_thread_tag(
+        [&, j] { votes[j] = vote_cell(cx, child[j], box[j], p, k, classify, points[j], !kept[j].empty()); });
+  };
+  tbb::parallel_invoke(vote(0), vote(1));
+  return points[0] + points[1];
 }
 
 }  // namespace
@@ -491,8 +589,23 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   std::vector<uint32_t> all(planes.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   const uint32_t root = cx.root_cell();
-  const CellVote root_vote = vote_cell(cx, root, k.outer, p, k, classify, res.points);
+  const CellVote root_vote = vote_cell(cx, root, k.outer, p, k, classify, res.points, !all.empty());
   inside_label[root] = root_vote.inside;
+  // Cells whose vote stopped once they were known to be inconsistent (they are queued, to be
+  // split); one that is not split after all is voted in full before its label counts.
+  std::vector<uint8_t> partial(inside_label.size(), 0);
+  partial[root] = root_vote.partial;
+  std::vector<float>& share = res.inside_share;
+  share.assign(inside_label.size(), kNoShare);
+  share[root] = root_vote.share;
+  auto complete_vote = [&](uint32_t c, double& score) {
+    if (!partial[c]) return;
+    const CellVote full = vote_cell(cx, c, cx.cell_bbox(c), p, k, classify, res.points, false);
+    inside_label[c] = full.inside;
+    share[c] = full.share;
+    partial[c] = 0;
+    score = full.score;
+  };
   enqueue(root, root_vote.score, all);
 
   while (!queue.empty()) {
@@ -501,12 +614,19 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       break;
     }
     const uint32_t c = queue.top().cell;
-    const double score = queue.top().score;
+    double score = queue.top().score;
     queue.pop();
     std::vector<uint32_t> remaining = std::move(todo[c]);
     std::vector<uint32_t> deferred;
-    const std::optional<size_t> i = choose_plane(cx, c, score, remaining, planes, p, k, deferred);
-    if (!i) continue;
+    auto full_score = [&] {
+      complete_vote(c, score);
+      return score;
+    };
+    const std::optional<size_t> i = choose_plane(cx, c, full_score, remaining, planes, p, k, deferred);
+    if (!i) {
+      complete_vote(c, score);
+      continue;
+    }
     auto split = cx.split(c, planes[remaining[*i]].plane);
     remaining.erase(remaining.begin(), remaining.begin() + static_cast<long>(*i) + 1);
     remaining.insert(remaining.begin(), deferred.begin(), deferred.end());
@@ -515,39 +635,125 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
       continue;
     }
     ++res.splits;
-    // The two children are voted at once, each with its own points (the same ids and labels as
-    // one after the other), then queued in the same order (docs/algorithm.md §7.3).
     const uint32_t child[2] = {split->neg, split->pos};
     std::vector<uint32_t> kept[2];
-    BBox box[2];
-    for (int j = 0; j < 2; ++j) {
-      const CellVertices cv_child(cx, child[j]);
-      for (uint32_t q : remaining)
-        if (crosses(cx, cv_child, planes[q], p.dist, k.hair, k.outer) != Crossing::No) kept[j].push_back(q);
-      box[j] = cv_child.box;
-      cx.cell_volume(child[j]);  // measured (and cached) before the votes read it
-    }
     CellVote votes[2];
-    size_t points[2] = {0, 0};
-    tbb::parallel_invoke(
-        with_thread_tag([&] { votes[0] = vote_cell(cx, child[0], box[0], p, k, classify, points[0]); }),
-        with_thread_tag([&] { votes[1] = vote_cell(cx, child[1], box[1], p, k, classify, points[1]); }));
-    res.points += points[0] + points[1];
-    if (inside_label.size() <= std::max(child[0], child[1]))
+    res.points += vote_children(cx, child, remaining, planes, p, k, classify, kept, votes);
+    if (inside_label.size() <= std::max(child[0], child[1])) {
       inside_label.resize(std::max(child[0], child[1]) + 1024, 0);
+      partial.resize(inside_label.size(), 0);
+      share.resize(inside_label.size(), kNoShare);
+    }
     for (int j = 0; j < 2; ++j) {
       inside_label[child[j]] = votes[j].inside;
+      partial[child[j]] = votes[j].partial;
+      share[child[j]] = votes[j].share;
       enqueue(child[j], votes[j].score, std::move(kept[j]));
     }
   }
   for (uint32_t c : cx.live_cells()) {
     ++res.cells;
+    double score = 0;
+    if (c < partial.size()) complete_vote(c, score);  // left in the queue by a truncated carving
     if (c < inside_label.size() && inside_label[c]) res.inside.push_back(c);
   }
   return res;
 }
 
-size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume) {
+namespace {
+
+// The cost of flipping cell c (remove_pinch_edges): the vote's volume it puts on the wrong side.
+double flip_cost(const CellComplex& cx, const std::vector<uint32_t>& inside, const std::vector<float>& share,
+                 uint32_t c) {
+  const bool in = std::binary_search(inside.begin(), inside.end(), c);
+  const double r = c < share.size() && share[c] >= 0 ? share[c] : (in ? 1.0 : 0.0);
+  return cx.cell_volume(c) * (in ? 2 * r - 1 : 1 - 2 * r);
+}
+
+void toggle(std::vector<uint32_t>& cells, uint32_t c) {
+  auto it = std::lower_bound(cells.begin(), cells.end(), c);
+  if (it != cells.end() && *it == c) cells.erase(it);
+  else cells.insert(it, c);
+}
+
+// The registry plane nearest the points `at` among the carving planes that really cross cell c
+// and leave every one of them on one side (beyond the hair), or nothing.
+std::optional<uint32_t> nearest_plane_beside(const CellComplex& cx, uint32_t c, const std::vector<Vec3>& at,
+                                             const PinchCuts& cuts, double hair) {
+  const CellVertices cv(cx, c);
+  std::optional<uint32_t> cut;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const CarvePlane& q : *cuts.planes) {
+    const Plane& pl = cx.planes()[q.plane];
+    bool pos = true, neg = true;
+    double d = 0;
+    for (const Vec3& a : at) {
+      const double s = pl.signed_distance(a);
+      pos &= s > hair;
+      neg &= s < -hair;
+      d = std::max(d, std::abs(s));
+    }
+    if ((pos || neg) && d < nearest &&
+        crosses(cx, cv, q, cuts.params->dist, hair, cuts.outer) == Crossing::Yes) {
+      nearest = d;
+      cut = q.plane;
+    }
+  }
+  return cut;
+}
+
+// Splits cell c by `plane`; both pieces keep its label and share (`inside` stays sorted).
+// Returns whether it split.
+bool split_keeping_label(CellComplex& cx, uint32_t c, uint32_t plane, std::vector<uint32_t>& inside,
+                         std::vector<float>& share) {
+  const bool was_inside = std::binary_search(inside.begin(), inside.end(), c);
+  const float r = c < share.size() && share[c] >= 0 ? share[c] : (was_inside ? 1.0f : 0.0f);
+  const auto split = cx.split(c, plane);
+  if (!split) return false;
+  const uint32_t kids[2] = {split->neg, split->pos};
+  if (share.size() <= std::max(kids[0], kids[1])) share.resize(std::max(kids[0], kids[1]) + 1, kNoShare);
+  if (was_inside) toggle(inside, c);
+  for (uint32_t kid : kids) {
+    share[kid] = r;
+    if (was_inside) toggle(inside, kid);
+  }
+  return true;
+}
+
+// The first pinch that can still be repaired: the cells around it that have not flipped yet
+// (sorted, distinct) and its vertices (an edge's two or one vertex); nothing when none is left.
+// Pinch edges first, then pinched vertices.
+std::pair<std::vector<uint32_t>, std::vector<uint32_t>> first_pinch(
+    const CellComplex& cx, const std::map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>>& uses,
+    const std::vector<uint32_t>& vertices, const std::unordered_set<uint32_t>& flipped) {
+  std::vector<uint32_t> around, where;
+  auto gather = [&](const std::vector<std::pair<uint32_t, uint32_t>>& inc) {
+    for (const auto& [f, c] : inc)
+      for (uint32_t x : {c, cx.other_side(f, c)})
+        if (x != CellComplex::kNone && !flipped.count(x)) around.push_back(x);
+  };
+  for (const auto& [e, inc] : uses) {
+    if (inc.size() <= 2) continue;
+    gather(inc);
+    if (!around.empty()) {
+      where = {uint32_t(e >> 32), uint32_t(e & 0xffffffffu)};
+      break;
+    }
+  }
+  // The cells on either side of the boundary facets around a pinched vertex.
+  for (size_t i = 0; around.empty() && i < vertices.size(); ++i) {
+    const uint32_t v = vertices[i];
+    for (const auto& [e, inc] : uses)
+      if (uint32_t(e >> 32) == v || uint32_t(e & 0xffffffffu) == v) gather(inc);
+    if (!around.empty()) where = {v};
+  }
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  return {around, where};
+}
+
+size_t repair_pinches(const CellComplex& cx, CellComplex* cutting, std::vector<uint32_t>& inside,
+                      double& flipped_volume, std::vector<float>& share, const PinchCuts* cuts) {
   auto pinch_count = [&](const std::vector<uint32_t>& cells) {
     const auto uses = boundary_edge_uses(cx, cells);  // edge -> (facet, inner cell)
     size_t n = 0;
@@ -557,58 +763,77 @@ size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, 
     n += vertices.size();
     return std::make_tuple(n, uses, std::move(vertices));
   };
-  auto flip = [](std::vector<uint32_t>& cells, uint32_t c) {
-    auto it = std::lower_bound(cells.begin(), cells.end(), c);
-    if (it != cells.end() && *it == c) cells.erase(it);
-    else cells.insert(it, c);
-  };
+  auto cost = [&](uint32_t c) { return flip_cost(cx, inside, share, c); };
+  const double hair = cuts ? (cuts->params->hair >= 0 ? cuts->params->hair : 0.1 * cuts->params->dist) : 0;
   // Each cell changes side at most once, so the repair cannot oscillate (a flip that removes one
-  // pinch may create another next to it); among the cells around a pinch edge the smallest one
-  // whose flip lowers the number of pinch edges is taken, else the smallest.
+  // pinch may create another next to it); among the cells around a pinch the one whose flip puts
+  // the least of the vote's volume on the wrong side and lowers the number of pinches is taken,
+  // else the first in that order (docs/algorithm.md §8). Flipping a cell of volume V and inside
+  // share r from inside to outside costs (2r − 1)·V, from outside to inside (1 − 2r)·V; a cell
+  // without a share counts as unanimous (its whole volume). When that flip would cost more than
+  // `cuts->max_flip`, the cheapest such cell that a carving plane beside the pinch crosses is cut
+  // by the nearest one (the pinch stays on one side), and the pinch is looked at again.
+  constexpr int kMaxCuts = 8;          // per pinch
+  constexpr size_t kMaxAllCuts = 256;  // per repair: each cut is a split of the complex
+  // Cuts the first repair (cheapest first) that a plane beside the pinch crosses. False if none.
+  auto cut_down = [&](const std::vector<uint32_t>& repairs, const std::vector<uint32_t>& where) {
+    std::vector<Vec3> at;
+    for (uint32_t v : where) at.push_back(cx.point(v));
+    for (uint32_t c : repairs) {
+      if (const auto plane = nearest_plane_beside(cx, c, at, *cuts, hair);
+          plane && split_keeping_label(*cutting, c, *plane, inside, share))
+        return true;
+    }
+    return false;
+  };
   std::unordered_set<uint32_t> flipped;
+  std::map<std::vector<uint32_t>, int> cut_at;  // pinch (its vertices) -> cuts made there
+  size_t all_cuts = 0;
   size_t flips = 0;
   std::sort(inside.begin(), inside.end());
   for (;;) {
     auto [count, uses, vertices] = pinch_count(inside);
     if (count == 0) return flips;
-    std::vector<uint32_t> around;
-    for (const auto& [e, inc] : uses) {
-      if (inc.size() <= 2) continue;
-      for (const auto& [f, c] : inc)
-        for (uint32_t x : {c, cx.other_side(f, c)})
-          if (x != CellComplex::kNone && !flipped.count(x)) around.push_back(x);
-      if (!around.empty()) break;  // the first pinch edge that can still be repaired
-    }
-    // Then pinched vertices: the cells on either side of the boundary facets around the vertex.
-    for (size_t i = 0; around.empty() && i < vertices.size(); ++i) {
-      const uint32_t v = vertices[i];
-      for (const auto& [e, inc] : uses) {
-        if (uint32_t(e >> 32) != v && uint32_t(e & 0xffffffffu) != v) continue;
-        for (const auto& [f, c] : inc)
-          for (uint32_t x : {c, cx.other_side(f, c)})
-            if (x != CellComplex::kNone && !flipped.count(x)) around.push_back(x);
-      }
-    }
+    const auto [around, where] = first_pinch(cx, uses, vertices, flipped);
     if (around.empty()) return flips;  // every cell around every pinch has flipped once: give up
-    std::sort(around.begin(), around.end(), [&](uint32_t a, uint32_t b) {
-      const double va = cx.cell_volume(a), vb = cx.cell_volume(b);
-      return va != vb ? va < vb : a < b;
+    std::vector<std::pair<double, uint32_t>> order;
+    for (uint32_t c : around) order.emplace_back(cost(c), c);
+    std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+      if (a.first != b.first) return a.first < b.first;
+      const double va = cx.cell_volume(a.second), vb = cx.cell_volume(b.second);
+      return va != vb ? va < vb : a.second < b.second;
     });
-    around.erase(std::unique(around.begin(), around.end()), around.end());
-    uint32_t pick = around.front();
-    for (uint32_t c : around) {
+    std::vector<uint32_t> repairs;  // the cells whose flip lowers the count, cheapest first
+    for (const auto& [c_cost, c] : order) {
       std::vector<uint32_t> trial = inside;
-      flip(trial, c);
-      if (std::get<0>(pinch_count(trial)) < count) {
-        pick = c;
-        break;
-      }
+      toggle(trial, c);
+      if (std::get<0>(pinch_count(trial)) < count) repairs.push_back(c);
     }
-    flip(inside, pick);
+    const uint32_t pick = repairs.empty() ? order.front().second : repairs.front();
+    if (cutting && cost(pick) > cuts->max_flip && cut_at[where] < kMaxCuts && all_cuts < kMaxAllCuts &&
+        cut_down(repairs, where)) {
+      ++cut_at[where];
+      ++all_cuts;
+      continue;
+    }
+    toggle(inside, pick);
     flipped.insert(pick);
     flipped_volume += cx.cell_volume(pick);
     ++flips;
   }
+}
+
+}  // namespace
+
+size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume,
+                          const std::vector<float>& share) {
+  std::vector<float> shares = share;
+  return repair_pinches(cx, nullptr, inside, flipped_volume, shares, nullptr);
+}
+
+size_t remove_pinch_edges(CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume,
+                          std::vector<float>& share, const PinchCuts& cuts) {
+  return repair_pinches(cx, &cx, inside, flipped_volume, share, &cuts);
 }
 
 size_t flip_thin_cells(const CellComplex& cx, std::vector<uint32_t>& inside, double width,

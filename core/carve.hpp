@@ -64,16 +64,29 @@ struct CarveParams {
 using PointClassifier =
     std::function<void(const std::vector<Vec3>&, const std::vector<uint64_t>& ids, std::vector<uint8_t>&)>;
 
+// A cell without a vote's share (CarveResult::inside_share): taken as unanimous for its label.
+constexpr float kNoShare = -1.0f;
+
 struct CarveResult {
   std::vector<uint32_t> inside;  // live inside cells, ascending ids
   size_t cells = 0;              // live cells at the end
   size_t splits = 0;
   size_t points = 0;       // oracle queries
   bool truncated = false;  // stopped by max_cells or the deadline
+  // Per cell id: the inside share r of its last vote (complete for every live cell), or kNoShare.
+  std::vector<float> inside_share;
 };
 
 CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const PointClassifier& classify,
                   const CarveParams& p, std::chrono::steady_clock::time_point deadline);
+
+// A vote's count: its points inside and outside. An incomplete count (a vote stopped once the
+// cell is known to be inconsistent) holds lower bounds of both.
+struct RegionCount {
+  size_t in = 0;
+  size_t out = 0;
+  bool complete = true;
+};
 
 // The vote by regions (docs/design.md "Regions, not points"): how many of a cell's sample points
 // `pts` (ids first_id + i) are inside. A box of points that no triangle of `triangles` (those
@@ -83,19 +96,41 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
 // through gaps of an open or non-manifold input) every point of the box is classified. When the
 // triangles in a box lie within `slab` of one plane, its points beyond the slab on either side
 // are two such regions. Points of the other boxes (at most `batch` each, near the surface) are
-// classified one by one. Adds the oracle's queries to `classified`.
-size_t region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch, const SurfaceIndex& surface,
-                   std::vector<uint32_t> triangles, double slab, const BBox& oracle_box,
-                   const PointClassifier& classify, size_t& classified);
+// classified one by one. Adds the oracle's queries to `classified`. With `mixed_at` > 0 the
+// count stops (incomplete) once the untouched regions' representatives settle at least
+// `mixed_at` points of each label: the points near the surface are not classified, since the
+// cell will be split anyway (docs/design.md "A mixed cell's vote stops early").
+RegionCount region_vote(const std::vector<Vec3>& pts, uint64_t first_id, size_t batch,
+                        const SurfaceIndex& surface, std::vector<uint32_t> triangles, double slab,
+                        const BBox& oracle_box, const PointClassifier& classify, size_t& classified,
+                        size_t mixed_at = 0);
 
 // Sample points uniformly inside a live convex cell (deterministic for `seed`).
 std::vector<Vec3> sample_cell(const CellComplex& cx, uint32_t cell, int count, uint64_t seed);
 
 // Makes the union of `inside` 2-manifold: at an edge used by more than two boundary facets (two
-// cells touching only along it), or at a vertex where two fans of boundary facets meet, a small
-// cell around it changes side (each cell at most once).
+// cells touching only along it), or at a vertex where two fans of boundary facets meet, a cell
+// around it changes side (each cell at most once): the one whose flip puts the least of its vote
+// on the wrong side (`share`: per cell id the inside share of its vote, CarveResult::inside_share;
+// a cell without one counts as unanimous, so the smallest cell goes first).
 // Returns the number of cells flipped; `flipped_volume` accumulates their volume.
-size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume);
+size_t remove_pinch_edges(const CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume,
+                          const std::vector<float>& share = {});
+
+// Lets the pinch repair cut a cell whose flip would cost more than `max_flip` (a wing of the
+// building, a room of air) by the carving plane nearest the pinch that leaves it on one side,
+// so that a piece along the pinch flips instead (docs/algorithm.md §8).
+struct PinchCuts {
+  const std::vector<CarvePlane>* planes = nullptr;
+  const CarveParams* params = nullptr;
+  BBox outer;  // the carving box
+  double max_flip = 0;
+};
+
+// The same, cutting cells as `cuts` says; the pieces keep their cell's label and share (`share`
+// grows with the new ids).
+size_t remove_pinch_edges(CellComplex& cx, std::vector<uint32_t>& inside, double& flipped_volume,
+                          std::vector<float>& share, const PinchCuts& cuts);
 
 // Cells thinner than `width` (their smallest depth behind any of their facets) on the boundary of
 // `inside` change side: a slab or wedge thinner than the output grid cannot be written (its faces

@@ -10,6 +10,8 @@
 namespace mc {
 
 namespace {
+// The largest share of the cell's volume a pinch repair may flip before cutting the cell down.
+constexpr double kMaxPinchFlipShare = 0.01;
 // The volume agreement open models are held to (docs/algorithm.md §6.5; the open variants' 2 %).
 constexpr double kOpenRelabel = 0.02;
 // The most triangles a cell's exact inside volume sums over (about four plane clips each); a
@@ -148,8 +150,16 @@ Labelling CellLabeller::label(bool use_vertical, Clock::time_point deadline) con
   // A void enclosed by the building would be an inner shell of the cell and of a part: filled.
   double filled = 0;
   size_t cavities = fill_cavities(*l.complex, l.inside, filled);
+  // A pinch whose cheapest flip would change the cell by more than 1 % of its volume (and more
+  // than one vote point's, c³) is cut down first (§8): a wing, or a room of air.
+  PinchCuts cuts;
+  cuts.planes = &planes_.planes;
+  cuts.params = &o.carve;
+  cuts.outer = planes_.box;
+  cuts.max_flip = std::max(out_.cell_size * out_.cell_size * out_.cell_size,
+                           kMaxPinchFlipShare * surface_volume(*l.complex, l.inside));
   double flipped = 0;
-  if (const size_t n = remove_pinch_edges(*l.complex, l.inside, flipped))
+  if (const size_t n = remove_pinch_edges(*l.complex, l.inside, flipped, l.carve.inside_share, cuts))
     l.problems.push_back("changed the side of " + std::to_string(n) + " cell(s) at pinch edges (volume " +
                          std::to_string(flipped) + ") to make the singleton cell 2-manifold");
   cavities += fill_cavities(*l.complex, l.inside, filled);

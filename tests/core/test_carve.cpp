@@ -1,6 +1,7 @@
 // The carving's vote by regions (core/carve.hpp `region_vote`, docs/design.md "Regions, not
 // points"): the same count as classifying every point where the oracle is constant off the
-// surface, far fewer queries, every point classified where it is not, exact beside one plane.
+// surface, far fewer queries, every point classified where it is not, exact beside one plane; a
+// vote allowed to stop stops once both labels are settled, with lower bounds of both counts.
 #include "core/carve.hpp"
 
 #include <gtest/gtest.h>
@@ -62,8 +63,11 @@ TEST(RegionVote, CountsAsEveryPointWouldWithAFractionOfTheQueries) {
   const BBox box = box_of(pts);
   Exact oracle{in_l};
   size_t classified = 0;
-  const size_t in = region_vote(pts, 0, 9, index, index.touching(box), 0.01, BBox{}, oracle.fn(), classified);
-  EXPECT_EQ(in, count_inside(pts, in_l));
+  const RegionCount count =
+      region_vote(pts, 0, 9, index, index.touching(box), 0.01, BBox{}, oracle.fn(), classified);
+  EXPECT_TRUE(count.complete);
+  EXPECT_EQ(count.in, count_inside(pts, in_l));
+  EXPECT_EQ(count.in + count.out, pts.size());
   EXPECT_EQ(classified, oracle.queries);
   EXPECT_LT(classified, pts.size() / 4);
 }
@@ -84,7 +88,7 @@ TEST(RegionVote, ADisagreeingRegionHasEveryPointClassified) {
   };
   size_t classified = 0;
   const size_t in =
-      region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{}, noisy, classified);
+      region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{}, noisy, classified).in;
   // A region whose 9 points happen to agree is labelled whole (0.7 % of 9-point draws): close
   // to, not exactly, the point-by-point count.
   EXPECT_NEAR(double(in), double(truth), 0.02 * pts.size());
@@ -106,7 +110,7 @@ TEST(RegionVote, PointsOnEitherSideOfOnePlaneAreTwoRegions) {
   Exact oracle{below_3};
   size_t classified = 0;
   const size_t in =
-      region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{}, oracle.fn(), classified);
+      region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{}, oracle.fn(), classified).in;
   EXPECT_EQ(in, count_inside(pts, below_3));
   EXPECT_LT(classified, 200u);  // the two sides' points and the few within 1 cm of the sheet
 }
@@ -124,9 +128,49 @@ TEST(RegionVote, ABoxAcrossTheOraclesBoxIsNotUniform) {
   const auto pts = random_points(20000, {-1, -1, -1}, {2, 2, 2}, 4);
   Exact oracle{in_unit_box};
   size_t classified = 0;
-  const size_t in = region_vote(pts, 0, 9, index, {}, 0.01, oracle_box, oracle.fn(), classified);
+  const size_t in = region_vote(pts, 0, 9, index, {}, 0.01, oracle_box, oracle.fn(), classified).in;
   EXPECT_EQ(in, count_inside(pts, in_unit_box));
   EXPECT_LT(classified, pts.size() / 2);
+}
+
+TEST(RegionVote, AMixedCellStopsOnceBothLabelsAreSettled) {
+  // A cell that holds the L's inside and its air: once the untouched regions settle 500 points
+  // of each label the vote stops, with lower bounds of both counts, long before the points near
+  // the surface are classified.
+  const TriangleSoup soup = triangulate(test::l_building());
+  const SurfaceIndex index(soup);
+  const auto pts = random_points(20000, {-1, -1, -1}, {13, 13, 7}, 6);
+  const size_t truth = count_inside(pts, in_l);
+  Exact full_oracle{in_l}, oracle{in_l};
+  size_t full_classified = 0, classified = 0;
+  const RegionCount full = region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{},
+                                       full_oracle.fn(), full_classified);
+  const RegionCount stopped =
+      region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{}, oracle.fn(), classified, 500);
+  EXPECT_TRUE(full.complete);
+  EXPECT_FALSE(stopped.complete);
+  EXPECT_GE(stopped.in, 500u);
+  EXPECT_GE(stopped.out, 500u);
+  EXPECT_LE(stopped.in, truth);
+  EXPECT_LE(stopped.out, pts.size() - truth);
+  EXPECT_EQ(classified, oracle.queries);
+  EXPECT_LT(classified * 10, full_classified);
+}
+
+TEST(RegionVote, AVoteThatCannotSettleBothLabelsIsComplete) {
+  // Asking for more points of each label than the cell has inside: the vote runs to the end and
+  // counts exactly what the full vote counts.
+  const TriangleSoup soup = triangulate(test::l_building());
+  const SurfaceIndex index(soup);
+  const auto pts = random_points(5000, {-1, -1, -1}, {13, 13, 7}, 7);
+  const size_t truth = count_inside(pts, in_l);
+  Exact oracle{in_l};
+  size_t classified = 0;
+  const RegionCount count = region_vote(pts, 0, 9, index, index.touching(box_of(pts)), 0.01, BBox{},
+                                        oracle.fn(), classified, truth + 1);
+  EXPECT_TRUE(count.complete);
+  EXPECT_EQ(count.in, truth);
+  EXPECT_EQ(count.out, pts.size() - truth);
 }
 
 TEST(RegionVote, IsDeterministic) {

@@ -1,5 +1,6 @@
 #include "core/complex.hpp"
 #include "core/carve.hpp"
+#include "core/surface.hpp"
 
 #include "cell_grid.hpp"
 
@@ -81,6 +82,65 @@ TEST(Carve, EnclosedOutsideCellsAreFilled) {
   EXPECT_NEAR(filled, 1.0, 1e-12);
   EXPECT_TRUE(std::binary_search(inside.begin(), inside.end(), centre));
   EXPECT_FALSE(std::binary_search(inside.begin(), inside.end(), corner));
+}
+
+// Four 2 x 2 x 4 columns around the vertical edge x = y = 2 of the box [0, 4]³, the two
+// diagonal ones inside: a pinch edge whose cheapest repair flips a whole column (16). With
+// carving planes beside the edge (x = 1.5, 2.5 and y = 1.5, 2.5) and cuts allowed beyond a flip
+// of 1, the column along the edge is cut down to a 0.5 x 0.5 x 4 piece, and that one flips.
+TEST(Carve, APinchIsRepairedByAPieceAlongItsEdge) {
+  auto setup = [](PlaneRegistry& reg, CellComplex& cx, std::vector<CarvePlane>& planes,
+                  std::vector<uint32_t>& inside) {
+    const uint32_t x2 = reg.add({{1, 0, 0}, -2}), y2 = reg.add({{0, 1, 0}, -2});
+    for (uint32_t pl : {x2, y2})
+      for (uint32_t c : cx.live_cells()) cx.split(c, pl);
+    for (uint32_t c : cx.live_cells()) {
+      const Vec3 m = cx.cell_centroid(c);
+      if ((m.x < 2) == (m.y < 2)) inside.push_back(c);
+    }
+    std::sort(inside.begin(), inside.end());
+    for (const Plane& pl :
+         {Plane{{1, 0, 0}, -1.5}, Plane{{1, 0, 0}, -2.5}, Plane{{0, 1, 0}, -1.5}, Plane{{0, 1, 0}, -2.5}})
+      planes.push_back({reg.add(pl), unit_box(4)});
+  };
+  auto pinch_edges = [](const CellComplex& cx, const std::vector<uint32_t>& inside) {
+    size_t n = 0;
+    for (const auto& [e, uses] : boundary_edge_uses(cx, inside)) n += uses.size() > 2;
+    return n;
+  };
+  {  // without cuts: a whole column changes side
+    PlaneRegistry reg;
+    CellComplex cx(reg, unit_box(4));
+    std::vector<CarvePlane> planes;
+    std::vector<uint32_t> inside;
+    setup(reg, cx, planes, inside);
+    ASSERT_EQ(pinch_edges(cx, inside), 1u);
+    double flipped = 0;
+    EXPECT_EQ(remove_pinch_edges(cx, inside, flipped), 1u);
+    EXPECT_NEAR(flipped, 16.0, 1e-9);
+    EXPECT_EQ(pinch_edges(cx, inside), 0u);
+  }
+  PlaneRegistry reg;
+  CellComplex cx(reg, unit_box(4));
+  std::vector<CarvePlane> planes;
+  std::vector<uint32_t> inside;
+  setup(reg, cx, planes, inside);
+  CarveParams p;
+  p.dist = 0.1;
+  PinchCuts cuts;
+  cuts.planes = &planes;
+  cuts.params = &p;
+  cuts.outer = unit_box(4);
+  cuts.max_flip = 1.0;
+  std::vector<float> share;
+  double flipped = 0;
+  EXPECT_EQ(remove_pinch_edges(cx, inside, flipped, share, cuts), 1u);
+  EXPECT_NEAR(flipped, 1.0, 1e-9);
+  EXPECT_EQ(pinch_edges(cx, inside), 0u);
+  EXPECT_TRUE(std::is_sorted(inside.begin(), inside.end()));
+  double in = 0;
+  for (uint32_t c : inside) in += cx.cell_volume(c);
+  EXPECT_NEAR(std::abs(in - 32.0), 1.0, 1e-9);  // the cut pieces kept their labels
 }
 
 TEST(CellComplex, BoxCellIsClosedWithUnitVolume) {
