@@ -773,13 +773,22 @@ size_t repair_pinches(const CellComplex& cx, CellComplex* cutting, std::vector<u
   // without a share counts as unanimous (its whole volume). When that flip would cost more than
   // `cuts->max_flip`, the cheapest such cell that a carving plane beside the pinch crosses is cut
   // by the nearest one (the pinch stays on one side), and the pinch is looked at again.
-  constexpr int kMaxCuts = 8;          // per pinch
-  constexpr size_t kMaxAllCuts = 256;  // per repair: each cut is a split of the complex
-  // Cuts the first repair (cheapest first) that a plane beside the pinch crosses. False if none.
-  auto cut_down = [&](const std::vector<uint32_t>& repairs, const std::vector<uint32_t>& where) {
+  constexpr int kMaxCuts = 8;                    // per pinch
+  constexpr size_t kMaxAllCuts = 256;            // per repair: each cut is a split of the complex
+  auto lowers = [&](uint32_t c, size_t count) {  // whether flipping c lowers the pinch count
+    std::vector<uint32_t> trial = inside;
+    toggle(trial, c);
+    return std::get<0>(pinch_count(trial)) < count;
+  };
+  // Cuts the first cell of `order` from `first` on whose flip lowers the count and that a plane
+  // beside the pinch crosses. False if none.
+  auto cut_down = [&](const std::vector<std::pair<double, uint32_t>>& order, size_t first,
+                      const std::vector<uint32_t>& where, size_t count) {
     std::vector<Vec3> at;
     for (uint32_t v : where) at.push_back(cx.point(v));
-    for (uint32_t c : repairs) {
+    for (size_t k = first; k < order.size(); ++k) {
+      const uint32_t c = order[k].second;
+      if (k > first && !lowers(c, count)) continue;
       if (const auto plane = nearest_plane_beside(cx, c, at, *cuts, hair);
           plane && split_keeping_label(*cutting, c, *plane, inside, share))
         return true;
@@ -803,15 +812,11 @@ size_t repair_pinches(const CellComplex& cx, CellComplex* cutting, std::vector<u
       const double va = cx.cell_volume(a.second), vb = cx.cell_volume(b.second);
       return va != vb ? va < vb : a.second < b.second;
     });
-    std::vector<uint32_t> repairs;  // the cells whose flip lowers the count, cheapest first
-    for (const auto& [c_cost, c] : order) {
-      std::vector<uint32_t> trial = inside;
-      toggle(trial, c);
-      if (std::get<0>(pinch_count(trial)) < count) repairs.push_back(c);
-    }
-    const uint32_t pick = repairs.empty() ? order.front().second : repairs.front();
-    if (cutting && cost(pick) > cuts->max_flip && cut_at[where] < kMaxCuts && all_cuts < kMaxAllCuts &&
-        cut_down(repairs, where)) {
+    size_t first = 0;  // the cheapest flip that lowers the count
+    while (first < order.size() && !lowers(order[first].second, count)) ++first;
+    const uint32_t pick = first < order.size() ? order[first].second : order.front().second;
+    if (cutting && first < order.size() && cost(pick) > cuts->max_flip && cut_at[where] < kMaxCuts &&
+        all_cuts < kMaxAllCuts && cut_down(order, first, where, count)) {
       ++cut_at[where];
       ++all_cuts;
       continue;
