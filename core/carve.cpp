@@ -479,8 +479,9 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
     // The score queues a cell when more than `inconsistency` c³ of it is mislabelled, i.e. when
     // both labels hold more than that volume's share of the n points.
     const size_t mixed_at =
-        may_stop ? static_cast<size_t>(std::floor(p.inconsistency * k.unit * static_cast<double>(n) / v)) + 1
-                 : 0;
+        may_stop && v > 0
+            ? static_cast<size_t>(std::floor(p.inconsistency * k.unit * static_cast<double>(n) / v)) + 1
+            : 0;
     const RegionCount count = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
                                           p.regions->entering(outward, box, k.hair), k.hair, p.oracle_box,
                                           classify, points, mixed_at);
@@ -653,8 +654,9 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
   }
   for (uint32_t c : cx.live_cells()) {
     ++res.cells;
-    double score = 0;
-    if (c < partial.size()) complete_vote(c, score);  // left in the queue by a truncated carving
+    // A cell left in the queue by a carving cut short keeps its estimated label: completing its
+    // vote would be work after the deadline (or beyond max_cells).
+    if (c < partial.size()) partial[c] = 0;
     if (c < inside_label.size() && inside_label[c]) res.inside.push_back(c);
   }
   return res;

@@ -1,6 +1,7 @@
 #include "core/cell_labelling.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <stdexcept>
 
@@ -150,6 +151,18 @@ Labelling CellLabeller::label(bool use_vertical, Clock::time_point deadline) con
   // A void enclosed by the building would be an inner shell of the cell and of a part: filled.
   double filled = 0;
   size_t cavities = fill_cavities(*l.complex, l.inside, filled);
+  // The cells those repairs moved count as unanimous for their new side in the pinch repair's
+  // costs (their vote's share would make flipping them back look cheap, and bring back the slab
+  // or the cavity).
+  {
+    std::vector<uint32_t> before = l.carve.inside, now = l.inside, moved;
+    std::sort(before.begin(), before.end());
+    std::sort(now.begin(), now.end());
+    std::set_symmetric_difference(before.begin(), before.end(), now.begin(), now.end(),
+                                  std::back_inserter(moved));
+    for (uint32_t c : moved)
+      if (c < l.carve.inside_share.size()) l.carve.inside_share[c] = kNoShare;
+  }
   // A pinch whose cheapest flip would change the cell by more than 1 % of its volume (and more
   // than one vote point's, c³) is cut down first (§8): a wing, or a room of air.
   PinchCuts cuts;
