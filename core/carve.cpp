@@ -664,11 +664,16 @@ CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const 
 
 namespace {
 
+// Cell c's inside share: its vote's, or unanimous for its side `in` when it has none.
+float share_of(const std::vector<float>& share, uint32_t c, bool in) {
+  return c < share.size() && share[c] >= 0 ? share[c] : (in ? 1.0f : 0.0f);
+}
+
 // The cost of flipping cell c (remove_pinch_edges): the vote's volume it puts on the wrong side.
 double flip_cost(const CellComplex& cx, const std::vector<uint32_t>& inside, const std::vector<float>& share,
                  uint32_t c) {
   const bool in = std::binary_search(inside.begin(), inside.end(), c);
-  const double r = c < share.size() && share[c] >= 0 ? share[c] : (in ? 1.0 : 0.0);
+  const double r = share_of(share, c, in);
   return cx.cell_volume(c) * (in ? 2 * r - 1 : 1 - 2 * r);
 }
 
@@ -709,7 +714,7 @@ std::optional<uint32_t> nearest_plane_beside(const CellComplex& cx, uint32_t c, 
 bool split_keeping_label(CellComplex& cx, uint32_t c, uint32_t plane, std::vector<uint32_t>& inside,
                          std::vector<float>& share) {
   const bool was_inside = std::binary_search(inside.begin(), inside.end(), c);
-  const float r = c < share.size() && share[c] >= 0 ? share[c] : (was_inside ? 1.0f : 0.0f);
+  const float r = share_of(share, c, was_inside);
   const auto split = cx.split(c, plane);
   if (!split) return false;
   const uint32_t kids[2] = {split->neg, split->pos};
