@@ -279,7 +279,9 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
     by_plane.emplace_back(lines[k].line.p2, k);
   }
   std::sort(by_plane.begin(), by_plane.end());
-  std::vector<std::pair<uint32_t, size_t>> added;  // (plane, line) of the lines appended since
+  const size_t first_lines = lines.size();
+  // The lines appended since, by plane (each list ascending): rows scan only their planes' lists.
+  std::unordered_map<uint32_t, std::vector<size_t>> added;
   std::vector<size_t> cand;
   // After a merge at (i, j) the scan starts again from the first pair, but every pair of lines
   // that were both there before and whose first line came before i was found not to merge (a
@@ -293,11 +295,15 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
       // Rows before `resume` only pair with the new lines; the others with every later line.
       const size_t from = i < resume ? std::max(i + 1, first_new) : i + 1;
       for (uint32_t pl : {lines[i].line.p1, lines[i].line.p2}) {
-        auto lo = std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
-        for (; lo != by_plane.end() && lo->first == pl; ++lo)
-          if (alive[lo->second]) cand.push_back(lo->second);
-        for (const auto& [q, k] : added)
-          if (q == pl && k >= from && alive[k]) cand.push_back(k);
+        if (from < first_lines) {
+          auto lo = std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
+          for (; lo != by_plane.end() && lo->first == pl; ++lo)
+            if (alive[lo->second]) cand.push_back(lo->second);
+        }
+        if (auto it = added.find(pl); it != added.end())
+          for (auto k = std::lower_bound(it->second.begin(), it->second.end(), from); k != it->second.end();
+               ++k)
+            if (alive[*k]) cand.push_back(*k);
       }
       std::sort(cand.begin(), cand.end());
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
@@ -313,8 +319,8 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
         alive[i] = alive[j] = 0;
         alive.resize(lines.size(), 1);
         for (size_t k = before; k < lines.size(); ++k) {
-          added.emplace_back(lines[k].line.p1, k);
-          added.emplace_back(lines[k].line.p2, k);
+          added[lines[k].line.p1].push_back(k);
+          if (lines[k].line.p2 != lines[k].line.p1) added[lines[k].line.p2].push_back(k);
         }
         resume = i;
         first_new = before;

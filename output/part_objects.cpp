@@ -66,9 +66,7 @@ void VertexPool::rollback(size_t mark) {
   if (!frame_.identity()) metric_.resize(out_.size());
 }
 
-EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const std::string& version,
-                          VertexPool& pool) {
-  EncodedSolid out;
+std::vector<GridFace> grid_faces(const PolygonMesh& part, VertexPool& pool, size_t& dropped) {
   std::vector<int64_t> vid(part.vertices.size(), -1);
   auto id_of = [&](uint32_t v) {
     if (vid[v] < 0) vid[v] = pool.add(part.vertices[v]);
@@ -91,22 +89,38 @@ EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const
       else if (r == 0) break;  // the outer ring collapsed: the whole face is gone
     }
     if (g.rings.empty()) {
-      ++out.dropped_faces;
+      ++dropped;
       continue;
     }
     faces.push_back(std::move(g));
   }
+  return faces;
+}
+
+EncodedSolid checked_solid(std::vector<GridFace> faces, const std::vector<std::string>& semantic_labels,
+                           const std::vector<Vec3>& pool, double step, const std::string& lod,
+                           const std::string& version) {
+  EncodedSolid out;
   const auto t0 = std::chrono::steady_clock::now();
-  const size_t bent = triangulate_bent_shared_faces(faces, pool.vertices());
-  PartRepair checked = check_and_repair(std::move(faces), pool.vertices(), pool.step());
+  const size_t bent = triangulate_bent_shared_faces(faces, pool);
+  PartRepair checked = check_and_repair(std::move(faces), pool, step);
   out.check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.defect = std::move(checked.defect);
   out.repaired = checked.repaired;
   out.triangles = std::move(checked.shell);
   out.split_faces = checked.split_faces + bent;
-
   out.faces = std::move(checked.faces);
-  write_solid(out, part.semantic_labels, lod, version);
+  write_solid(out, semantic_labels, lod, version);
+  return out;
+}
+
+EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const std::string& version,
+                          VertexPool& pool) {
+  size_t dropped = 0;
+  std::vector<GridFace> faces = grid_faces(part, pool, dropped);
+  EncodedSolid out =
+      checked_solid(std::move(faces), part.semantic_labels, pool.vertices(), pool.step(), lod, version);
+  out.dropped_faces = dropped;
   return out;
 }
 

@@ -78,7 +78,17 @@ struct EncodedSolid {
   std::string defect;
 };
 
-// `lod` is written as a string, except for CityJSON 1.0 (numeric lods).
+// A part's faces as rings of pool ids, its vertices added to the pool in face order; a face whose
+// outer ring collapses on the grid is left out and counted in `dropped`.
+std::vector<GridFace> grid_faces(const PolygonMesh& part, VertexPool& pool, size_t& dropped);
+
+// A part's grid faces checked and repaired (output/part_repair.hpp), and written. It only reads
+// the pool's vertices: the parts of a level, their ids taken in order, are checked in parallel.
+EncodedSolid checked_solid(std::vector<GridFace> faces, const std::vector<std::string>& semantic_labels,
+                           const std::vector<Vec3>& pool, double step, const std::string& lod,
+                           const std::string& version);
+
+// grid_faces then checked_solid. `lod` is written as a string, except for CityJSON 1.0 (numeric lods).
 EncodedSolid encode_solid(const PolygonMesh& part, const std::string& lod, const std::string& version,
                           VertexPool& pool);
 

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <mutex>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "core/hull.hpp"
+#include "core/thread_tag.hpp"
 #include "io/off_obj.hpp"
 #include "output/part_merge.hpp"
 #include "output/part_repair.hpp"
@@ -66,10 +70,11 @@ std::pair<std::string, int> first_overlap(const std::vector<EncodedSolid>& solid
   std::vector<BBox> boxes(solids.size());
   for (size_t j = 0; j < solids.size(); ++j)
     for (const Vec3& v : solids[j].triangles.points) boxes[j].add(v);
-  std::vector<std::optional<std::vector<std::array<Vec3, 3>>>> hulls(solids.size());  // built once
+  std::vector<std::vector<std::array<Vec3, 3>>> hulls(solids.size());  // built once, when needed
+  std::vector<std::once_flag> hull_built(solids.size());
   auto hull_of = [&](size_t j) -> const std::vector<std::array<Vec3, 3>>& {
-    if (!hulls[j]) hulls[j] = hull_facets(solids[j].triangles.points);
-    return *hulls[j];
+    std::call_once(hull_built[j], [&] { hulls[j] = hull_facets(solids[j].triangles.points); });
+    return hulls[j];
   };
   // On the first, plain encoding every vertex is its exact position rounded (at most half a step
   // away) and the parts were apart before: two parts can only overlap where a vertex of one, not on
@@ -89,12 +94,21 @@ std::pair<std::string, int> first_overlap(const std::vector<EncodedSolid>& solid
       return false;
     return interiors_overlap_exact(solids[j].triangles, solids[k].triangles);
   };
+  // Each part's first overlapping later part, the parts in parallel; the first pair in (j, k)
+  // order is the one reported, as in a scan one pair at a time.
+  std::vector<size_t> first(solids.size(), 0);
+  tbb::parallel_for(size_t(0), solids.size(), with_thread_tag([&](size_t j) {
+                      for (size_t k = j + 1; k < solids.size(); ++k)
+                        if (overlap(j, k)) {
+                          first[j] = k;
+                          break;
+                        }
+                    }));
   for (size_t j = 0; j < solids.size(); ++j)
-    for (size_t k = j + 1; k < solids.size(); ++k)
-      if (overlap(j, k))
-        return {"parts " + std::to_string(j) + " and " + std::to_string(k) +
-                    " overlap on the output grid (601 BUILDINGPARTS_OVERLAP)",
-                static_cast<int>(parts[k].volume < parts[j].volume ? k : j)};
+    if (const size_t k = first[j]; k > 0)
+      return {"parts " + std::to_string(j) + " and " + std::to_string(k) +
+                  " overlap on the output grid (601 BUILDINGPARTS_OVERLAP)",
+              static_cast<int>(parts[k].volume < parts[j].volume ? k : j)};
   return {"", -1};
 }
 
@@ -117,13 +131,22 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   else
     for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
   if (separate) separate_near_touches(meshes, pool.step());
-  std::vector<EncodedSolid> solids;
+  // Vertex ids in part order (the pool's numbering), then every part checked on its own in
+  // parallel: the first invalid part fails the level, as when checked one by one (a failed
+  // level's vertices are rolled back by the caller).
+  std::vector<std::vector<GridFace>> faces(parts.size());
+  std::vector<size_t> dropped(parts.size(), 0);
+  for (size_t j = 0; j < parts.size(); ++j) faces[j] = grid_faces(meshes[j], pool, dropped[j]);
+  std::vector<EncodedSolid> solids(parts.size());
+  tbb::parallel_for(size_t(0), parts.size(), with_thread_tag([&](size_t j) {
+                      solids[j] = checked_solid(std::move(faces[j]), meshes[j].semantic_labels,
+                                                pool.vertices(), pool.step(), lod, version);
+                      solids[j].dropped_faces = dropped[j];
+                    }));
   for (size_t j = 0; j < parts.size(); ++j) {
-    solids.push_back(encode_solid(meshes[j], lod, version, pool));
-    e.check_seconds += solids.back().check_seconds;
-    if (!solids.back().defect.empty()) {
-      e.defect =
-          "part " + std::to_string(j) + " is invalid on the output grid (" + solids.back().defect + ")";
+    e.check_seconds += solids[j].check_seconds;
+    if (!solids[j].defect.empty()) {
+      e.defect = "part " + std::to_string(j) + " is invalid on the output grid (" + solids[j].defect + ")";
       e.failed_part = static_cast<int>(j);
       // For a developer: the part that failed, before rounding (docs/reliability.md).
       if (const char* dir = std::getenv("MC_DUMP_GRID_DEFECTS"))
