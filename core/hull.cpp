@@ -3,6 +3,11 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
+#include <CGAL/Cartesian_converter.h>
+#include <CGAL/Filtered_predicate.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Mpzf.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,16 +17,44 @@
 
 namespace mc {
 
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+
+// CGAL's hull traits with both of quickhull's predicates exact through Mpzf, CGAL's exact float
+// for ring-only predicates, instead of GMP rationals. Building points are often exactly coplanar
+// (a wall's corners) or exactly as far from a facet (a roof's ridge), so the floating-point
+// filters fail and the exact fallback ran about half of the hull's time in GMP's rationals. The
+// answers are the same exact signs, so the hull is the same (docs/benchmarks.md, "Speed").
+//  - Is the point above a facet: the kernel's Orientation_3 (statically filtered, exact in Mpzf),
+//    which quickhull uses for any traits but CGAL's own filtered one.
+//  - Which of two points is farther from a facet: the sign of one 3x3 determinant, intervals
+//    first, then Mpzf.
+struct HullTraits : CGAL::Convex_hull_traits_3<K, Mesh> {
+  using EK = CGAL::Simple_cartesian<CGAL::Mpzf>;
+  using AK = CGAL::Simple_cartesian<CGAL::Interval_nt_advanced>;
+  using LessDistance =
+      CGAL::Filtered_predicate<EK::Less_signed_distance_to_plane_3, AK::Less_signed_distance_to_plane_3,
+                               CGAL::Cartesian_converter<K, EK>, CGAL::Cartesian_converter<K, AK>>;
+  struct Less_signed_distance_to_plane_3 {
+    bool operator()(const Plane_3& h, const Point_3& p, const Point_3& q) const {
+      return LessDistance()(h.p(), h.q(), h.r(), p, q);
+    }
+  };
+  Less_signed_distance_to_plane_3 less_signed_distance_to_plane_3_object() const { return {}; }
+};
+
+}  // namespace
+
 Hull convex_hull(const std::vector<Vec3>& points) {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Mesh = CGAL::Surface_mesh<K::Point_3>;
   Hull h;
   if (points.size() < 4) return h;
   std::vector<K::Point_3> pts;
   pts.reserve(points.size());
   for (const Vec3& p : points) pts.emplace_back(p.x, p.y, p.z);
   Mesh m;
-  CGAL::convex_hull_3(pts.begin(), pts.end(), m);
+  CGAL::convex_hull_3(pts.begin(), pts.end(), m, HullTraits());
   if (m.number_of_faces() < 4) return h;  // coplanar input: no volume
   // CGAL triangulates a facet with four or more coplanar points in an order that depends on memory
   // addresses, and so did the last bit of the volume (two runs of a sample with two threads

@@ -381,39 +381,64 @@ uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
 // facets lie on one plane is inside a flat face, and one on two planes is inside their common
 // edge line; neither is an extreme point, so the hull is the same without them
 // (docs/algorithm.md §9.2), and the hull is most of the analysis' time. `vertices` counts the
-// boundary vertices.
-std::vector<Vec3> hull_points(const CellComplex& cx, std::vector<uint64_t>& vertex_planes, size_t& vertices) {
-  std::sort(vertex_planes.begin(), vertex_planes.end());
-  vertex_planes.erase(std::unique(vertex_planes.begin(), vertex_planes.end()), vertex_planes.end());
-  std::vector<Vec3> pts;
-  vertices = 0;
-  for (size_t i = 0; i < vertex_planes.size();) {
-    size_t j = i;
-    while (j < vertex_planes.size() && (vertex_planes[j] >> 32) == (vertex_planes[i] >> 32)) ++j;
-    if (j - i >= 3) pts.push_back(cx.point(static_cast<uint32_t>(vertex_planes[i] >> 32)));
-    ++vertices;
-    i = j;
+// boundary vertices. Each corner is looked up in a per-thread table by vertex id (the first two
+// planes seen), stamped per call so that it is never cleared: linear in the corners, where
+// sorting them was a tenth of the analysis. The points come in vertex id order.
+std::vector<Vec3> hull_points(const CellComplex& cx, const std::vector<uint64_t>& vertex_planes,
+                              size_t& vertices) {
+  struct Seen {
+    uint32_t stamp = 0;
+    uint32_t plane[2] = {0, 0};
+    uint32_t planes = 0;
+  };
+  thread_local std::vector<Seen> seen;
+  thread_local uint32_t stamp = 0;
+  if (seen.size() < cx.num_vertices()) seen.resize(cx.num_vertices());
+  if (++stamp == 0) {  // wrapped: every entry is stale again
+    std::fill(seen.begin(), seen.end(), Seen{});
+    stamp = 1;
   }
+  std::vector<uint32_t> corners;
+  vertices = 0;
+  for (const uint64_t vp : vertex_planes) {
+    const uint32_t v = static_cast<uint32_t>(vp >> 32), plane = static_cast<uint32_t>(vp);
+    Seen& e = seen[v];
+    if (e.stamp != stamp) {
+      e = {stamp, {plane, 0}, 1};
+      ++vertices;
+    } else if (e.planes == 1 && plane != e.plane[0]) {
+      e.plane[1] = plane, e.planes = 2;
+    } else if (e.planes == 2 && plane != e.plane[0] && plane != e.plane[1]) {
+      e.planes = 3;
+      corners.push_back(v);
+    }
+  }
+  std::sort(corners.begin(), corners.end());
+  std::vector<Vec3> pts;
+  pts.reserve(corners.size());
+  for (uint32_t v : corners) pts.push_back(cx.point(v));
   return pts;
 }
 
 // Dihedral edges between boundary faces on different planes (2-manifold edges only); pinch edges
 // and pinch vertices counted into info.pinch_edges.
 std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
-                                         std::vector<std::pair<uint64_t, Incidence>>& edge_uses,
+                                         const std::vector<std::pair<uint64_t, Incidence>>& edge_uses,
                                          size_t vertices, uint32_t faces, PartAnalysis& info) {
   std::vector<DihedralEdge> edges;
-  // The uses of each edge, edges in key order (deterministic), uses in boundary order.
-  std::stable_sort(edge_uses.begin(), edge_uses.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  // The uses of each edge, edges in key order (deterministic), uses in boundary order: sorted by
+  // (key, position), the order a stable sort by key gives, on 16-byte entries.
+  std::vector<std::pair<uint64_t, uint32_t>> order(edge_uses.size());
+  for (uint32_t i = 0; i < edge_uses.size(); ++i) order[i] = {edge_uses[i].first, i};
+  std::sort(order.begin(), order.end());
   std::vector<Incidence> uses;
   uses.reserve(edge_uses.size());
-  for (const auto& e : edge_uses) uses.push_back(e.second);
+  for (const auto& [key, i] : order) uses.push_back(edge_uses[i].second);
   std::vector<std::pair<uint64_t, std::span<const Incidence>>> by_edge;
-  for (size_t i = 0; i < edge_uses.size();) {
+  for (size_t i = 0; i < order.size();) {
     size_t j = i;
-    while (j < edge_uses.size() && edge_uses[j].first == edge_uses[i].first) ++j;
-    by_edge.emplace_back(edge_uses[i].first, std::span<const Incidence>(uses.data() + i, j - i));
+    while (j < order.size() && order[j].first == order[i].first) ++j;
+    by_edge.emplace_back(order[i].first, std::span<const Incidence>(uses.data() + i, j - i));
     i = j;
   }
   for (const auto& [key, inc] : by_edge) {

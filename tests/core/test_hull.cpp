@@ -52,6 +52,31 @@ TEST(Hull, ResultDoesNotDependOnThePointOrder) {
 
 // The building's hull cache (core/hull_cache.hpp): the same point set in another order or with
 // repeated points is a hit, and a hit is bitwise the hull computed afresh; another set misses.
+// Degenerate on purpose, as building points are, and far from the origin as a city's are: a box
+// turned about z (edges along (0.75, 1) and (-1, 0.75): every coordinate exact) sampled on a grid
+// over its faces, so that most points are exactly on a facet's plane and many exactly as far from
+// a facet as the farthest one. Every such tie is decided by the exact fallback of the hull's
+// predicates (core/hull.cpp): the hull is the box, six facets, and a shuffled input gives its
+// volume to the last bit.
+TEST(Hull, GridPointsOnTheFacesOfAFarTurnedBoxGiveTheBox) {
+  const Vec3 origin{85000.25, 446000.5, 3.0}, u{0.75, 1.0, 0.0}, v{-1.0, 0.75, 0.0}, w{0.0, 0.0, 1.0};
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 6; ++j)
+      for (int k = 0; k <= 4; ++k) {
+        if (i != 0 && i != 10 && j != 0 && j != 6 && k != 0 && k != 4) continue;  // the faces only
+        pts.push_back(origin + u * i + v * j + w * k);
+      }
+  const Hull h = convex_hull(pts);
+  EXPECT_EQ(h.facets.size(), 6u);
+  EXPECT_NEAR(h.volume, 10 * 6 * 4 * 1.5625, 1e-8);  // |u| = |v| = 1.25
+  std::mt19937 rng(3);
+  for (int round = 0; round < 5; ++round) {
+    std::shuffle(pts.begin(), pts.end(), rng);
+    EXPECT_EQ(convex_hull(pts).volume, h.volume);
+  }
+}
+
 TEST(Hull, CacheHitsAreTheHullOfTheSamePointSet) {
   const PolygonMesh m =
       test::load_off(std::string(MC_SOURCE_DIR) + "/tests/core/data/3dbag_0503100000018414.off");
