@@ -142,29 +142,57 @@ struct RawLine {
 };
 
 // Groups edges by (plane pair, reflex) and splits each group into chains of edges sharing vertices.
+// Groups in key order, chains in the order of their union-find roots, edges in index order. The
+// first edge of the group at each vertex is kept in a per-thread table by vertex id, stamped per
+// group (no map per group).
 std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralEdge>& edges,
                                  bool split_chains) {
   const PlaneRegistry& reg = s.cx->planes();
-  std::map<std::tuple<uint32_t, uint32_t, bool>, std::vector<size_t>> groups;
-  for (size_t i = 0; i < edges.size(); ++i) groups[{edges[i].p1, edges[i].p2, edges[i].reflex}].push_back(i);
+  auto key = [&](uint32_t i) { return std::make_tuple(edges[i].p1, edges[i].p2, edges[i].reflex); };
+  std::vector<uint32_t> order(edges.size());
+  std::iota(order.begin(), order.end(), uint32_t{0});
+  std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+    const auto kx = key(x), ky = key(y);
+    return kx != ky ? kx < ky : x < y;
+  });
+  thread_local std::vector<std::pair<uint32_t, uint32_t>> at_vertex;  // (stamp, first edge)
+  thread_local uint32_t stamp = 0;
+  if (at_vertex.size() < s.cx->num_vertices()) at_vertex.resize(s.cx->num_vertices(), {0, 0});
+  UnionFind chain;
+  std::vector<std::pair<uint32_t, uint32_t>> by_root;  // (root, edge in group)
+  std::vector<size_t> members;
   std::vector<RawLine> out;
-  for (const auto& [key, idx] : groups) {
+  for (size_t g = 0; g < order.size();) {
+    size_t h = g;
+    while (h < order.size() && key(order[h]) == key(order[g])) ++h;
+    const uint32_t n = static_cast<uint32_t>(h - g);
     // Union-find over the group's edges through shared endpoints.
-    UnionFind chain(idx.size());
-    std::unordered_map<uint32_t, uint32_t> at_vertex;
-    for (uint32_t k = 0; k < idx.size(); ++k) {
-      for (uint32_t v : {edges[idx[k]].a, edges[idx[k]].b}) {
-        auto [it, fresh] = at_vertex.emplace(v, k);
-        if (!fresh) chain.link(k, it->second);
+    chain.reset(n);
+    if (++stamp == 0) {  // wrapped: every entry is stale again
+      std::fill(at_vertex.begin(), at_vertex.end(), std::pair<uint32_t, uint32_t>{0, 0});
+      stamp = 1;
+    }
+    for (uint32_t k = 0; k < n; ++k) {
+      for (uint32_t v : {edges[order[g + k]].a, edges[order[g + k]].b}) {
+        auto& first = at_vertex[v];
+        if (first.first != stamp) first = {stamp, k};
+        else chain.link(k, first.second);
         if (!split_chains) chain.link(k, 0);  // research-code grouping: one line per plane pair
       }
     }
-    std::map<size_t, std::vector<size_t>> chains;
-    for (uint32_t k = 0; k < idx.size(); ++k) chains[chain.find(k)].push_back(idx[k]);
-    for (const auto& [root, members] : chains) {
+    by_root.clear();
+    for (uint32_t k = 0; k < n; ++k) by_root.emplace_back(chain.find(k), k);
+    std::sort(by_root.begin(), by_root.end());
+    const bool reflex = edges[order[g]].reflex;
+    for (size_t c = 0; c < by_root.size();) {
+      size_t d = c;
+      members.clear();
+      for (; d < by_root.size() && by_root[d].first == by_root[c].first; ++d)
+        members.push_back(order[g + by_root[d].second]);
+      c = d;
       const DihedralEdge& e0 = edges[members.front()];
       RawLine rl;
-      rl.reflex = std::get<2>(key);
+      rl.reflex = reflex;
       ConcaveLine& L = rl.line;
       L.p1 = e0.p1;
       L.p2 = e0.p2;
@@ -188,6 +216,7 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
         }
       out.push_back(rl);
     }
+    g = h;
   }
   return out;
 }
@@ -364,9 +393,14 @@ uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
     info.volume += s.volume[i];
     for (const auto& side : s.sides[i]) {
       if (side.other != CellSpace::kOut && test_bit(info.bits, side.other)) continue;
-      const auto loop = cx.outward_loop(side.facet, s.cells[i]);
-      for (size_t k = 0; k < loop.size(); ++k) {
-        const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
+      // The facet's loop as outward_loop() gives it (reversed when the cell is in front), read in place.
+      const auto& facet = cx.facet(side.facet);
+      const auto& loop = facet.loop;
+      const size_t n = loop.size();
+      const bool reversed = facet.front == s.cells[i];
+      auto at = [&](size_t k) { return reversed ? loop[n - 1 - k] : loop[k]; };
+      for (size_t k = 0; k < n; ++k) {
+        const uint32_t a = at(k), b = at((k + 1) % n);
         edge_uses.push_back(
             {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), {side.facet, s.cells[i], a, b, faces}});
         vertex_planes.push_back((uint64_t(a) << 32) | cx.facet(side.facet).plane);
