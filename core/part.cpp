@@ -103,13 +103,13 @@ struct Incidence {
 // closed 2-manifold, whose Euler characteristic is at most 2 per component (docs/algorithm.md
 // §9.2). So the fan test runs only for parts that fail this count (rings, pinches).
 bool euler_says_no_pinch(const std::vector<std::pair<uint64_t, std::span<const Incidence>>>& by_edge,
-                         size_t vertices, size_t faces) {
+                         size_t vertices, size_t faces, size_t& components) {
+  components = 0;  // (not counted when an edge has other than two uses)
   UnionFind comp(faces);
   for (const auto& [key, inc] : by_edge) {
     if (inc.size() != 2) return false;
     comp.link(inc[0].face, inc[1].face);
   }
-  size_t components = 0;
   for (uint32_t f = 0; f < faces; ++f) components += comp.is_root(f);
   const long chi = static_cast<long>(vertices) - static_cast<long>(by_edge.size()) + static_cast<long>(faces);
   return chi == 2 * static_cast<long>(components);
@@ -458,7 +458,8 @@ std::vector<Vec3> hull_points(const CellComplex& cx, const std::vector<uint64_t>
 // and pinch vertices counted into info.pinch_edges.
 std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
                                          const std::vector<std::pair<uint64_t, Incidence>>& edge_uses,
-                                         size_t vertices, uint32_t faces, PartAnalysis& info) {
+                                         size_t vertices, uint32_t faces, PartAnalysis& info,
+                                         size_t& components) {
   std::vector<DihedralEdge> edges;
   // The uses of each edge, edges in key order (deterministic), uses in boundary order: sorted by
   // (key, position), the order a stable sort by key gives, on 16-byte entries.
@@ -493,7 +494,7 @@ std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
     edges.push_back(d);
   }
   // A vertex where two fans of faces meet is as invalid in a solid as a pinch edge.
-  if (!euler_says_no_pinch(by_edge, vertices, faces))
+  if (!euler_says_no_pinch(by_edge, vertices, faces, components))
     info.pinch_edges +=
         static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
   return edges;
@@ -609,14 +610,22 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   const uint32_t faces = part_boundary(s, info, edge_uses, vertex_planes);
   size_t vertices = 0;
   const std::vector<Vec3> pts = hull_points(cx, vertex_planes, vertices);
-  const std::shared_ptr<const Hull> hull_ptr =
-      ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
+  size_t components = 0;  // of the boundary surface
+  const std::vector<DihedralEdge> edges = dihedral_edges(cx, edge_uses, vertices, faces, info, components);
+  // One closed boundary surface without pinches whose every edge is convex bounds a convex solid:
+  // its hull is itself, and no line is weighed against it. Most of a search's pieces are such
+  // (docs/algorithm.md §9.2).
+  const bool convex =
+      components == 1 && info.pinch_edges == 0 &&
+      std::none_of(edges.begin(), edges.end(), [](const DihedralEdge& e) { return e.reflex; });
+  std::shared_ptr<const Hull> hull_ptr;
+  if (convex) hull_ptr = std::make_shared<const Hull>();
+  else hull_ptr = ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
   const Hull& hull = *hull_ptr;
-  info.hull_volume = hull.volume;
+  info.hull_volume = convex ? info.volume : hull.volume;
   info.delta = std::max(0.0, info.hull_volume - info.volume);
   if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;
 
-  const std::vector<DihedralEdge> edges = dihedral_edges(cx, edge_uses, vertices, faces, info);
   std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
   weigh_lines(raw, hull, ctx, info);

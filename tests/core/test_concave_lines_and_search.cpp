@@ -277,6 +277,20 @@ TEST(ConcaveLines, PinchedVerticesCountedWhereTheEulerCountFails) {
     for (int y = 0; y < 3; ++y)
       if (x != 1 || y != 1) ring.push_back(cell_at(x, y, 0));
   EXPECT_EQ(pinches(ring), 0);
+  // A part whose boundary has no reflex edge is its own hull, but only when that boundary is one
+  // surface: two cubes apart have the hull of both (the root of a building of two components).
+  auto analysed = [&](std::vector<uint32_t> cells) {
+    std::sort(cells.begin(), cells.end());
+    const CellSpace space = make_space(cx, cells);
+    return analyze_part(space, space.all(), ctx, none);
+  };
+  const PartAnalysis cube = analysed({cell_at(1, 1, 1)});
+  EXPECT_EQ(cube.hull_volume, cube.volume);
+  EXPECT_EQ(cube.delta, 0.0);
+  const PartAnalysis apart = analysed({cell_at(0, 0, 0), cell_at(2, 2, 2)});
+  EXPECT_NEAR(apart.volume, 2.0, 1e-12);
+  EXPECT_NEAR(apart.hull_volume, 7.0, 1e-9);  // a unit cube swept by (2, 2, 2): 1 + 2 + 2 + 2
+  EXPECT_GT(apart.delta, 0.0);
 }
 
 TEST(ConcaveLines, LShapeHasOneLineAtTheInnerCornerProposingBothWallsAndTheBisector) {
