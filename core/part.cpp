@@ -323,16 +323,19 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
       cand.clear();
       // Rows before `resume` only pair with the new lines; the others with every later line.
       const size_t from = i < resume ? std::max(i + 1, first_new) : i + 1;
+      // Two lines merge only if one of them is reflex (merged_line): a convex row pairs only
+      // with reflex lines.
+      const bool any = lines[i].reflex;
       for (uint32_t pl : {lines[i].line.p1, lines[i].line.p2}) {
         if (from < first_lines) {
           auto lo = std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
           for (; lo != by_plane.end() && lo->first == pl; ++lo)
-            if (alive[lo->second]) cand.push_back(lo->second);
+            if (alive[lo->second] && (any || lines[lo->second].reflex)) cand.push_back(lo->second);
         }
         if (auto it = added.find(pl); it != added.end())
           for (auto k = std::lower_bound(it->second.begin(), it->second.end(), from); k != it->second.end();
                ++k)
-            if (alive[*k]) cand.push_back(*k);
+            if (alive[*k] && (any || lines[*k].reflex)) cand.push_back(*k);
       }
       std::sort(cand.begin(), cand.end());
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
@@ -625,6 +628,9 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   info.hull_volume = convex ? info.volume : hull.volume;
   info.delta = std::max(0.0, info.hull_volume - info.volume);
   if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;
+  // Nor has it a concave line: its lines are all convex, and only lines above concave_thresh · π
+  // (> π) count, or merged ones, which need a reflex line.
+  if (convex) return info;
 
   std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
