@@ -7,8 +7,11 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-# Binaries find libraries beside them (../lib) wherever the tree is moved.
-set_target_properties(morphcut_city morphcut PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
+# No RPATH: our libraries are static and every shared one is the system's. An install RPATH
+# made CMake pad the build tree's binaries with an empty RUNPATH (":::…", to be rewritten at
+# install), and an empty entry is the current directory: every start looked for its dozen shared
+# libraries in the caller's directory first (about 150 failed opens, and a library planted there
+# would have been loaded). Test `binaries_search_no_relative_library_path`.
 install(TARGETS morphcut_city morphcut RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 target_include_directories(mc_core PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/morphcut>)
