@@ -569,7 +569,7 @@ size_t vote_children(const CellComplex& cx, const uint32_t (&child)[2],
 CarveResult carve(CellComplex& cx, const std::vector<CarvePlane>& planes, const PointClassifier& classify,
                   const CarveParams& p, std::chrono::steady_clock::time_point deadline) {
   CarveResult res;
-  const CarveScale k{p.cell_size * p.cell_size * p.cell_size, p.hair >= 0 ? p.hair : 0.1 * p.dist,
+  const CarveScale k{p.cell_size * p.cell_size * p.cell_size, p.hair_or_default(),
                      cx.cell_volume(cx.root_cell()), cx.cell_bbox(cx.root_cell())};
   std::vector<uint8_t> inside_label(cx.num_cells() + 1024, 0);
   struct Entry {
@@ -771,7 +771,7 @@ size_t repair_pinches(const CellComplex& cx, CellComplex* cutting, std::vector<u
     return std::make_tuple(n, uses, std::move(vertices));
   };
   auto cost = [&](uint32_t c) { return flip_cost(cx, inside, share, c); };
-  const double hair = cuts ? (cuts->params->hair >= 0 ? cuts->params->hair : 0.1 * cuts->params->dist) : 0;
+  const double hair = cuts ? cuts->params->hair_or_default() : 0;
   // Each cell changes side at most once, so the repair cannot oscillate (a flip that removes one
   // pinch may create another next to it); among the cells around a pinch the one whose flip puts
   // the least of the vote's volume on the wrong side and lowers the number of pinches is taken,

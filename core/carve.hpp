@@ -38,6 +38,7 @@ struct CarveParams {
   int vote_batch = 9;      // points deciding a cell the surface does not touch (0 = full vote)
   double min_gap = 0.002;  // see PreprocessParams::min_gap
   double hair = -1;        // see Preprocessed::hair; < 0: δ/10
+  double hair_or_default() const { return hair >= 0 ? hair : 0.1 * dist; }
   // Whether the input surface touches a box (conservative); null = always full votes.
   std::function<bool(const BBox&)> surface_touches;
   // For a valid solid (docs/algorithm.md §7.3, "grazed cells"): whether the input surface reaches

@@ -1,5 +1,7 @@
 #include "core/column_volume.hpp"
 
+#include "core/stamped_table.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -159,15 +161,13 @@ std::vector<uint32_t> ColumnVolume::candidates(const BBox& box) const {
   const int j0 = cell_of(box.lo.y, y0_, ny_), j1 = cell_of(box.hi.y, y0_, ny_);
   // A column listed in several grid cells is taken once: marked with this query's stamp (per
   // thread, so that the two children of a split are measured at once).
-  thread_local std::vector<uint64_t> seen;
-  thread_local uint64_t stamp = 0;
-  ++stamp;
-  if (seen.size() < columns_.size()) seen.resize(columns_.size(), 0);
+  thread_local StampedTable<bool> seen;
+  seen.next_round(columns_.size());
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
       for (uint32_t t : grid_[static_cast<size_t>(j) * nx_ + i]) {
-        if (seen[t] == stamp) continue;
-        seen[t] = stamp;
+        if (seen.find(t)) continue;
+        seen.set(t, true);
         const BBox& b = columns_[t].box;
         // A column matters when its triangle overlaps the cell in plan and rises above its floor.
         if (b.lo.x <= box.hi.x && box.lo.x <= b.hi.x && b.lo.y <= box.hi.y && box.lo.y <= b.hi.y &&

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/hull.hpp"
+#include "core/stamped_table.hpp"
 #include "core/surface.hpp"
 #include "core/union_find.hpp"
 
@@ -143,8 +144,8 @@ struct RawLine {
 
 // Groups edges by (plane pair, reflex) and splits each group into chains of edges sharing vertices.
 // Groups in key order, chains in the order of their union-find roots, edges in index order. The
-// first edge of the group at each vertex is kept in a per-thread table by vertex id, stamped per
-// group (no map per group).
+// first edge of the group at each vertex is kept in a per-thread table by vertex id, a new round
+// per group (core/stamped_table.hpp).
 std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralEdge>& edges,
                                  bool split_chains) {
   const PlaneRegistry& reg = s.cx->planes();
@@ -155,9 +156,7 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
     const auto kx = key(x), ky = key(y);
     return kx != ky ? kx < ky : x < y;
   });
-  thread_local std::vector<std::pair<uint32_t, uint32_t>> at_vertex;  // (stamp, first edge)
-  thread_local uint32_t stamp = 0;
-  if (at_vertex.size() < s.cx->num_vertices()) at_vertex.resize(s.cx->num_vertices(), {0, 0});
+  thread_local StampedTable<uint32_t> first_at;  // per vertex: the group's first edge there
   UnionFind chain;
   std::vector<std::pair<uint32_t, uint32_t>> by_root;  // (root, edge in group)
   std::vector<size_t> members;
@@ -168,15 +167,11 @@ std::vector<RawLine> build_lines(const CellSpace& s, const std::vector<DihedralE
     const uint32_t n = static_cast<uint32_t>(h - g);
     // Union-find over the group's edges through shared endpoints.
     chain.reset(n);
-    if (++stamp == 0) {  // wrapped: every entry is stale again
-      std::fill(at_vertex.begin(), at_vertex.end(), std::pair<uint32_t, uint32_t>{0, 0});
-      stamp = 1;
-    }
+    first_at.next_round(s.cx->num_vertices());
     for (uint32_t k = 0; k < n; ++k) {
       for (uint32_t v : {edges[order[g + k]].a, edges[order[g + k]].b}) {
-        auto& first = at_vertex[v];
-        if (first.first != stamp) first = {stamp, k};
-        else chain.link(k, first.second);
+        if (const uint32_t* first = first_at.find(v)) chain.link(k, *first);
+        else first_at.set(v, k);
         if (!split_chains) chain.link(k, 0);  // research-code grouping: one line per plane pair
       }
     }
@@ -418,35 +413,29 @@ uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
 // facets lie on one plane is inside a flat face, and one on two planes is inside their common
 // edge line; neither is an extreme point, so the hull is the same without them
 // (docs/algorithm.md §9.2), and the hull is most of the analysis' time. `vertices` counts the
-// boundary vertices. Each corner is looked up in a per-thread table by vertex id (the first two
-// planes seen), stamped per call so that it is never cleared: linear in the corners, where
-// sorting them was a tenth of the analysis. The points come in vertex id order.
+// boundary vertices. Each corner is looked up in a per-thread table by vertex id holding the
+// first two planes seen (core/stamped_table.hpp): linear in the corners, which sorting them is
+// not (a tenth of the analysis). The points come in vertex id order.
 std::vector<Vec3> hull_points(const CellComplex& cx, const std::vector<uint64_t>& vertex_planes,
                               size_t& vertices) {
-  struct Seen {
-    uint32_t stamp = 0;
-    uint32_t plane[2] = {0, 0};
-    uint32_t planes = 0;
+  struct Planes {
+    uint32_t plane[2];
+    uint32_t count;
   };
-  thread_local std::vector<Seen> seen;
-  thread_local uint32_t stamp = 0;
-  if (seen.size() < cx.num_vertices()) seen.resize(cx.num_vertices());
-  if (++stamp == 0) {  // wrapped: every entry is stale again
-    std::fill(seen.begin(), seen.end(), Seen{});
-    stamp = 1;
-  }
+  thread_local StampedTable<Planes> seen;
+  seen.next_round(cx.num_vertices());
   std::vector<uint32_t> corners;
   vertices = 0;
   for (const uint64_t vp : vertex_planes) {
     const uint32_t v = static_cast<uint32_t>(vp >> 32), plane = static_cast<uint32_t>(vp);
-    Seen& e = seen[v];
-    if (e.stamp != stamp) {
-      e = {stamp, {plane, 0}, 1};
+    Planes* e = seen.find(v);
+    if (!e) {
+      seen.set(v, {{plane, 0}, 1});
       ++vertices;
-    } else if (e.planes == 1 && plane != e.plane[0]) {
-      e.plane[1] = plane, e.planes = 2;
-    } else if (e.planes == 2 && plane != e.plane[0] && plane != e.plane[1]) {
-      e.planes = 3;
+    } else if (e->count == 1 && plane != e->plane[0]) {
+      e->plane[1] = plane, e->count = 2;
+    } else if (e->count == 2 && plane != e->plane[0] && plane != e->plane[1]) {
+      e->count = 3;
       corners.push_back(v);
     }
   }

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <mutex>
-#include <optional>
 
 #include <tbb/parallel_for.h>
 
