@@ -605,21 +605,20 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   size_t components = 0;  // of the boundary surface
   const std::vector<DihedralEdge> edges = dihedral_edges(cx, edge_uses, vertices, faces, info, components);
   // One closed boundary surface without pinches whose every edge is convex bounds a convex solid:
-  // its hull is itself, and no line is weighed against it. Most of a search's pieces are such
-  // (docs/algorithm.md §9.2).
-  const bool convex =
-      components == 1 && info.pinch_edges == 0 &&
-      std::none_of(edges.begin(), edges.end(), [](const DihedralEdge& e) { return e.reflex; });
-  std::shared_ptr<const Hull> hull_ptr;
-  if (convex) hull_ptr = std::make_shared<const Hull>();
-  else hull_ptr = ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
+  // its hull is itself (Δ = 0), and it has no concave line: its lines are all convex, and only
+  // lines above concave_thresh · π (> π) count, or merged ones, which need a reflex line. Most of
+  // a search's pieces are such (docs/algorithm.md §9.2).
+  if (components == 1 && info.pinch_edges == 0 &&
+      std::none_of(edges.begin(), edges.end(), [](const DihedralEdge& e) { return e.reflex; })) {
+    info.hull_volume = info.volume;
+    return info;
+  }
+  const std::shared_ptr<const Hull> hull_ptr =
+      ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
   const Hull& hull = *hull_ptr;
-  info.hull_volume = convex ? info.volume : hull.volume;
+  info.hull_volume = hull.volume;
   info.delta = std::max(0.0, info.hull_volume - info.volume);
   if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;
-  // Nor has it a concave line: its lines are all convex, and only lines above concave_thresh · π
-  // (> π) count, or merged ones, which need a reflex line.
-  if (convex) return info;
 
   std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
