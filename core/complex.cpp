@@ -218,8 +218,12 @@ bool CellComplex::collinear(uint32_t a, uint32_t b, uint32_t c) const {
 }
 
 int CellComplex::cell_side(uint32_t c, uint32_t plane) const {
+  return vertices_side(cell_vertices(c), plane);
+}
+
+int CellComplex::vertices_side(const std::vector<uint32_t>& vertices, uint32_t plane) const {
   bool pos = false, neg = false;
-  for (uint32_t v : cell_vertices(c)) {
+  for (uint32_t v : vertices) {
     const int s = vertex_side(v, plane);
     pos |= s > 0;
     neg |= s < 0;

@@ -60,6 +60,9 @@ class CellComplex {
   // Exact side of a live cell: +1 / -1 when entirely on one side (touching allowed), 0 when
   // the plane crosses its interior.
   int cell_side(uint32_t cell, uint32_t plane) const;
+  // The same from the cell's vertices (cell_vertices), for callers testing one cell against
+  // many planes.
+  int vertices_side(const std::vector<uint32_t>& vertices, uint32_t plane) const;
   // Exact side of a vertex: +1, 0, -1.
   int vertex_side(uint32_t vertex, uint32_t plane) const;
   // Exact collinearity of three vertices.

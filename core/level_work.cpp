@@ -63,9 +63,20 @@ PreparedPart refine(Preprocessed& pre, const LevelPart& w, const AnalysisContext
     return false;
   };
   for (uint32_t plane : info.candidates) {
+    // The hair tests first, in parallel for many cells: a split along `plane` adds vertices only
+    // on it, which the test ignores, so testing before the splits is testing between them.
+    cx.prepare_side_predicates();
+    std::vector<uint8_t> close(cells.size());
+    auto test = [&](size_t i) { close[i] = hair_close(cells[i], plane); };
+    if (cells.size() >= 32) {
+      tbb::parallel_for(size_t(0), cells.size(), with_thread_tag(test));
+    } else {
+      for (size_t i = 0; i < cells.size(); ++i) test(i);
+    }
     std::vector<uint32_t> next;
-    for (uint32_t c : cells) {
-      if (hair_close(c, plane)) {
+    for (size_t i = 0; i < cells.size(); ++i) {
+      const uint32_t c = cells[i];
+      if (close[i]) {
         next.push_back(c);
         continue;
       }
@@ -95,9 +106,12 @@ void finish_space(const Preprocessed& pre, PreparedPart& pr, const AnalysisConte
   const std::vector<uint32_t>& cells = pr.space.cells;
   const std::vector<uint32_t>& pool = pr.input.pool;
   pr.input.positive.assign(pool.size(), Bits(pr.space.words(), 0));
+  std::vector<std::vector<uint32_t>> vertices(cells.size());  // each cell's, once for every candidate
+  tbb::parallel_for(size_t(0), cells.size(),
+                    with_thread_tag([&](size_t i) { vertices[i] = cx.cell_vertices(cells[i]); }));
   tbb::parallel_for(size_t(0), pool.size(), with_thread_tag([&](size_t k) {
                       for (uint32_t i = 0; i < cells.size(); ++i)
-                        if (cx.cell_side(cells[i], pool[k]) > 0) set_bit(pr.input.positive[k], i);
+                        if (cx.vertices_side(vertices[i], pool[k]) > 0) set_bit(pr.input.positive[k], i);
                     }));
   pr.input.ctx = ctx;
 }

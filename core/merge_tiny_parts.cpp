@@ -4,12 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <optional>
-#include <set>
-#include <tuple>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "core/hull.hpp"
 #include "core/thread_tag.hpp"
@@ -19,14 +16,33 @@ namespace mc::level {
 // Merges parts smaller than v_min into a neighbour (docs/algorithm.md §14.2), smallest first;
 // parts without a neighbour they can join stay.
 void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min, HullCache* hulls) {
+  // Each part's volume (summed in its cell order) and distinct vertex ids, kept across the merges:
+  // a merge changes only its target, whose values are then what a fresh pass would compute.
+  auto volume_of = [&](const std::vector<uint32_t>& cells) {
+    double v = 0;
+    for (uint32_t c : cells) v += cx.cell_volume(c);
+    return v;
+  };
+  auto vertices_of = [&](const std::vector<uint32_t>& cells) {
+    std::vector<uint32_t> ids;  // each vertex once (cells share them)
+    for (uint32_t c : cells)
+      for (uint32_t v : cx.cell_vertices(c)) ids.push_back(v);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+  };
+  std::vector<double> vol;
+  std::vector<std::vector<uint32_t>> verts;
+  for (const LevelPart& p : parts) {
+    vol.push_back(volume_of(p.cells));
+    verts.push_back(vertices_of(p.cells));
+  }
+  constexpr uint32_t kNoPart = ~0u;
+  std::vector<uint32_t> owner(cx.num_cells(), kNoPart);
   for (int guard = 0; guard < 10000; ++guard) {
-    std::unordered_map<uint32_t, uint32_t> owner;
-    std::vector<double> vol(parts.size(), 0);
+    std::fill(owner.begin(), owner.end(), kNoPart);
     for (uint32_t i = 0; i < parts.size(); ++i)
-      for (uint32_t c : parts[i].cells) {
-        owner[c] = i;
-        vol[i] += cx.cell_volume(c);
-      }
+      for (uint32_t c : parts[i].cells) owner[c] = i;
     int victim = -1;
     for (uint32_t i = 0; i < parts.size(); ++i)
       if (vol[i] < v_min && (victim < 0 || vol[i] < vol[victim])) victim = static_cast<int>(i);
@@ -35,9 +51,8 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
     for (uint32_t c : parts[victim].cells)
       for (uint32_t f : cx.cell(c).facets) {
         const uint32_t o = cx.other_side(f, c);
-        auto it = o == CellComplex::kNone ? owner.end() : owner.find(o);
-        if (it != owner.end() && it->second != static_cast<uint32_t>(victim))
-          shared[it->second] += cx.facet_area(f);
+        const uint32_t w = o == CellComplex::kNone ? kNoPart : owner[o];
+        if (w != kNoPart && w != static_cast<uint32_t>(victim)) shared[w] += cx.facet_area(f);
       }
     if (shared.empty()) {
       v_min = std::min(v_min, vol[victim]);  // isolated: keep it, look at larger ones only
@@ -47,16 +62,17 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
     // hull grows least; then the largest shared area (the research code's rule). A sliver can be
     // long: merged into the neighbour it shares most area with, it can take a convex box's
     // convexity far down (docs/design.md, "Tiny parts merge where the hull grows least").
-    auto hull_of = [&](const std::vector<uint32_t>& cells) {
-      std::vector<uint32_t> ids;  // each vertex once (cells share them)
-      for (uint32_t c : cells)
-        for (uint32_t v : cx.cell_vertices(c)) ids.push_back(v);
-      std::sort(ids.begin(), ids.end());
-      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    auto hull_of = [&](const std::vector<uint32_t>& ids) {
       std::vector<Vec3> pts;
       pts.reserve(ids.size());
       for (uint32_t v : ids) pts.push_back(cx.point(v));
       return hulls ? hulls->get(pts)->volume : convex_hull(pts).volume;
+    };
+    auto united = [&](const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+      std::vector<uint32_t> ids;
+      ids.reserve(a.size() + b.size());
+      std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(ids));
+      return ids;
     };
     const double tol = 1e-9 * std::max(1.0, v_min);
     // Each neighbour's union evaluated in parallel (they only read the complex), then chosen in
@@ -68,7 +84,8 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
                         std::vector<uint32_t> merged = parts[p].cells;
                         merged.insert(merged.end(), parts[victim].cells.begin(), parts[victim].cells.end());
                         if (!has_pinch_edge(cx, merged))
-                          growths[i] = hull_of(merged) - hull_of(parts[p].cells) - vol[victim];
+                          growths[i] =
+                              hull_of(united(verts[p], verts[victim])) - hull_of(verts[p]) - vol[victim];
                       }));
     int target = -1;
     double best_growth = 0, best_area = 0;
@@ -89,7 +106,11 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
     auto& dst = parts[target].cells;
     dst.insert(dst.end(), parts[victim].cells.begin(), parts[victim].cells.end());
     std::sort(dst.begin(), dst.end());
+    vol[target] = volume_of(dst);
+    verts[target] = united(verts[target], verts[victim]);
     parts.erase(parts.begin() + victim);
+    vol.erase(vol.begin() + victim);
+    verts.erase(verts.begin() + victim);
   }
 }
 

@@ -362,16 +362,23 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
   lines.resize(kept);
 }
 
-// Distance from s along unit b to the boundary of the convex hull (closed form over facets).
-double exit_distance(const std::vector<Plane>& hull, const Vec3& s, const Vec3& b) {
-  double t = 1e300;
-  for (const Plane& f : hull) {
-    const double nb = dot(f.n, b);
-    if (nb <= 1e-12) continue;
-    t = std::min(t, std::max(0.0, -f.signed_distance(s) / nb));
+// The hull's facets that a ray along unit b leaves through (n·b > 0), with n·b: computed once
+// for all the points of a line.
+struct FacingFacets {
+  std::vector<std::pair<const Plane*, double>> facets;
+  FacingFacets(const std::vector<Plane>& hull, const Vec3& b) {
+    for (const Plane& f : hull) {
+      const double nb = dot(f.n, b);
+      if (nb > 1e-12) facets.emplace_back(&f, nb);
+    }
   }
-  return t == 1e300 ? 0.0 : t;
-}
+  // Distance from s along b to the boundary of the convex hull (closed form over facets).
+  double exit_distance(const Vec3& s) const {
+    double t = 1e300;
+    for (const auto& [f, nb] : facets) t = std::min(t, std::max(0.0, -f->signed_distance(s) / nb));
+    return t == 1e300 ? 0.0 : t;
+  }
+};
 
 }  // namespace
 
@@ -385,8 +392,7 @@ uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
                        std::vector<uint64_t>& vertex_planes) {
   const CellComplex& cx = *s.cx;
   uint32_t faces = 0;
-  for (uint32_t i = 0; i < s.cells.size(); ++i) {
-    if (!test_bit(info.bits, i)) continue;
+  for_each_bit(info.bits, [&](uint32_t i) {
     ++info.cell_count;
     info.volume += s.volume[i];
     for (const auto& side : s.sides[i]) {
@@ -405,7 +411,7 @@ uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
       }
       ++faces;
     }
-  }
+  });
   return faces;
 }
 
@@ -446,26 +452,65 @@ std::vector<Vec3> hull_points(const CellComplex& cx, const std::vector<uint64_t>
   return pts;
 }
 
-// Dihedral edges between boundary faces on different planes (2-manifold edges only); pinch edges
-// and pinch vertices counted into info.pinch_edges.
+// The edge uses' indices in (edge key, position) order: the order a stable sort by key gives.
+// Uses are chained by their edge's first (smaller) vertex in a per-thread table by vertex id
+// (core/stamped_table.hpp); only those vertices are sorted, and each one's few uses are sorted
+// by key in place. Sorting every use was a tenth of the analysis.
+std::vector<uint32_t> uses_in_key_order(const CellComplex& cx,
+                                        const std::vector<std::pair<uint64_t, Incidence>>& edge_uses) {
+  constexpr uint32_t kEnd = ~0u;
+  const uint32_t n = static_cast<uint32_t>(edge_uses.size());
+  thread_local StampedTable<uint32_t> last;  // first vertex -> its latest use
+  last.next_round(cx.num_vertices());
+  std::vector<uint32_t> before(n);  // the previous use with the same first vertex
+  std::vector<uint32_t> firsts;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t a = static_cast<uint32_t>(edge_uses[i].first >> 32);
+    if (uint32_t* l = last.find(a)) {
+      before[i] = *l;
+      *l = i;
+    } else {
+      before[i] = kEnd;
+      last.set(a, i);
+      firsts.push_back(a);
+    }
+  }
+  std::sort(firsts.begin(), firsts.end());
+  std::vector<uint32_t> order;
+  order.reserve(n);
+  for (const uint32_t a : firsts) {
+    const size_t begin = order.size();
+    for (uint32_t i = *last.find(a); i != kEnd; i = before[i]) order.push_back(i);
+    std::reverse(order.begin() + static_cast<long>(begin), order.end());  // positions ascending
+    for (size_t k = begin + 1; k < order.size(); ++k) {  // insertion sort by key: stable, few uses
+      const uint32_t x = order[k];
+      size_t m = k;
+      for (; m > begin && edge_uses[order[m - 1]].first > edge_uses[x].first; --m) order[m] = order[m - 1];
+      order[m] = x;
+    }
+  }
+  return order;
+}
+
+// Dihedral edges between boundary faces on different planes (2-manifold edges only), their
+// angles not yet measured (dihedral_angles); pinch edges and pinch vertices counted into
+// info.pinch_edges.
 std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
                                          const std::vector<std::pair<uint64_t, Incidence>>& edge_uses,
                                          size_t vertices, uint32_t faces, PartAnalysis& info,
                                          size_t& components) {
   std::vector<DihedralEdge> edges;
-  // The uses of each edge, edges in key order (deterministic), uses in boundary order: sorted by
-  // (key, position), the order a stable sort by key gives, on 16-byte entries.
-  std::vector<std::pair<uint64_t, uint32_t>> order(edge_uses.size());
-  for (uint32_t i = 0; i < edge_uses.size(); ++i) order[i] = {edge_uses[i].first, i};
-  std::sort(order.begin(), order.end());
+  // The uses of each edge, edges in key order (deterministic), uses in boundary order.
+  const std::vector<uint32_t> order = uses_in_key_order(cx, edge_uses);
   std::vector<Incidence> uses;
   uses.reserve(edge_uses.size());
-  for (const auto& [key, i] : order) uses.push_back(edge_uses[i].second);
+  for (const uint32_t i : order) uses.push_back(edge_uses[i].second);
   std::vector<std::pair<uint64_t, std::span<const Incidence>>> by_edge;
   for (size_t i = 0; i < order.size();) {
+    const uint64_t key = edge_uses[order[i]].first;
     size_t j = i;
-    while (j < order.size() && order[j].first == order[i].first) ++j;
-    by_edge.emplace_back(order[i].first, std::span<const Incidence>(uses.data() + i, j - i));
+    while (j < order.size() && edge_uses[order[j]].first == key) ++j;
+    by_edge.emplace_back(key, std::span<const Incidence>(uses.data() + i, j - i));
     i = j;
   }
   for (const auto& [key, inc] : by_edge) {
@@ -478,11 +523,9 @@ std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
     const Vec3 e = normalized(cx.point(inc[0].b) - cx.point(inc[0].a));
     const Vec3 u1 = cross(N1, e);  // into face 1 (loops are CCW seen from outside)
     const bool reflex = dot(u1, N2) > 0;
-    const double c = std::clamp(dot(N1, N2), -1.0, 1.0);
-    const double angle = reflex ? M_PI + std::acos(c) : M_PI - std::acos(c);
     DihedralEdge d{
         inc[0].a, inc[0].b, std::min(pa, pb), std::max(pa, pb), pa < pb ? N1 : N2, pa < pb ? N2 : N1,
-        angle,    reflex};
+        0,        reflex};
     edges.push_back(d);
   }
   // A vertex where two fans of faces meet is as invalid in a solid as a pinch edge.
@@ -490,6 +533,15 @@ std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
     info.pinch_edges +=
         static_cast<int>(pinch_vertices(by_edge, [](const Incidence& x) { return x.facet; }).size());
   return edges;
+}
+
+// The dihedral angles, once the part is known not to be convex (a convex part needs only which
+// edges are reflex).
+void dihedral_angles(std::vector<DihedralEdge>& edges) {
+  for (DihedralEdge& d : edges) {
+    const double c = std::clamp(dot(d.n1, d.n2), -1.0, 1.0);
+    d.angle = d.reflex ? M_PI + std::acos(c) : M_PI - std::acos(c);
+  }
 }
 
 // Reflex lines above the concavity threshold, weighted by length x depth into the hull.
@@ -502,11 +554,12 @@ void weigh_lines(std::vector<RawLine>& raw, const Hull& hull, const AnalysisCont
     ConcaveLine& L = r.line;
     if (L.angle < min_angle || L.length() <= 0) continue;
     const Vec3 b = normalized(L.n1 + L.n2);
+    const FacingFacets facing(hull.facets, b);
     const int n = std::clamp(static_cast<int>(L.length() / std::max(ctx.dist, 1e-12)), 2, 16);
     double dmax = 0, dsum = 0;
     for (int k = 0; k <= n; ++k) {
       const Vec3 sp = L.point + L.dir * (L.t0 + (L.t1 - L.t0) * k / n);
-      const double d = exit_distance(hull.facets, sp, b);
+      const double d = facing.exit_distance(sp);
       dmax = std::max(dmax, d);
       dsum += d;
     }
@@ -603,7 +656,7 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   size_t vertices = 0;
   const std::vector<Vec3> pts = hull_points(cx, vertex_planes, vertices);
   size_t components = 0;  // of the boundary surface
-  const std::vector<DihedralEdge> edges = dihedral_edges(cx, edge_uses, vertices, faces, info, components);
+  std::vector<DihedralEdge> edges = dihedral_edges(cx, edge_uses, vertices, faces, info, components);
   // One closed boundary surface without pinches whose every edge is convex bounds a convex solid:
   // its hull is itself (Δ = 0), and it has no concave line: its lines are all convex, and only
   // lines above concave_thresh · π (> π) count, or merged ones, which need a reflex line. Most of
@@ -620,6 +673,7 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   info.delta = std::max(0.0, info.hull_volume - info.volume);
   if (info.delta <= 1e-9 * std::max(info.volume, 1e-300)) info.delta = 0;
 
+  dihedral_angles(edges);
   std::vector<RawLine> raw = build_lines(s, edges, dec.split_chains);
   merge_lines(raw, reg, ctx.dist);
   weigh_lines(raw, hull, ctx, info);

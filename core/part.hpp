@@ -6,6 +6,7 @@
 // combinatorics. Everything here reads only double coordinates and the combinatorial structure
 // of the complex, so it is safe to use from several threads at once.
 #pragma once
+#include <bit>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -21,6 +22,14 @@ using Bits = std::vector<uint64_t>;
 
 inline bool test_bit(const Bits& b, uint32_t i) { return (b[i >> 6] >> (i & 63)) & 1u; }
 inline void set_bit(Bits& b, uint32_t i) { b[i >> 6] |= uint64_t(1) << (i & 63); }
+// Calls f(i) for every set bit, ascending, a word at a time (a part is often a few cells of a
+// large space).
+template <class F>
+void for_each_bit(const Bits& b, F&& f) {
+  for (size_t w = 0; w < b.size(); ++w)
+    for (uint64_t word = b[w]; word != 0; word &= word - 1)
+      f(static_cast<uint32_t>(w * 64 + static_cast<unsigned>(std::countr_zero(word))));
+}
 uint64_t hash_bits(const Bits& b);
 size_t count_bits(const Bits& b);
 

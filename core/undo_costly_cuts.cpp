@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "core/thread_tag.hpp"
 #include "core/union_find.hpp"
 
 namespace mc::level {
@@ -67,6 +68,18 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
     weighted += weighted_convexity(pi);
     volume += pi.volume;
   }
+  // The previous parts of the groups that were cut, each analysed whole (in parallel: they only
+  // read the complex), then weighed group by group in root order.
+  std::vector<uint32_t> whole_parts;
+  for (const auto& [g, js] : parts_of)
+    if (js.size() > 1) whole_parts.insert(whole_parts.end(), prevs_of[g].begin(), prevs_of[g].end());
+  std::vector<PartAnalysis> whole_info(prev.size());
+  tbb::parallel_for(size_t(0), whole_parts.size(), with_thread_tag([&](size_t k) {
+                      const uint32_t q = whole_parts[k];
+                      Bits whole(ls.space.words(), 0);
+                      for (uint32_t c : prev_cells[q]) set_bit(whole, ls.local.at(c));
+                      whole_info[q] = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
+                    }));
   std::vector<std::tuple<double, uint32_t, double>> costly;  // (cost change, group, Σ V·convexity lost)
   for (const auto& [g, js] : parts_of) {
     const std::vector<uint32_t>& qs = prevs_of[g];
@@ -75,9 +88,7 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
     int d_e = 0;
     bool stays_cut = false;  // a previous part would be pinched, or less convex than uncut_convexity
     for (uint32_t q : qs) {
-      Bits whole(ls.space.words(), 0);
-      for (uint32_t c : prev_cells[q]) set_bit(whole, ls.local.at(c));
-      const PartAnalysis qi = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
+      const PartAnalysis& qi = whole_info[q];
       stays_cut |= qi.pinch_edges > 0;
       stays_cut |= reported_convexity(qi) < p.uncut_convexity;
       d_delta -= qi.delta;

@@ -217,6 +217,20 @@ void expect_convex_parts(const LevelResult& level) {
 // ---------------------------------------------------------------------------------------------
 // Concave lines and candidate planes (analyze_part)
 
+// A part's cells are visited a word at a time (core/part.hpp): the set bits, ascending, across
+// word boundaries and up to the last bit of the last word.
+TEST(PartBits, ForEachBitVisitsTheSetBitsAscending) {
+  Bits bits(3, 0);
+  const std::vector<uint32_t> set = {0, 5, 63, 64, 100, 127, 130, 191};
+  for (uint32_t i : set) set_bit(bits, i);
+  std::vector<uint32_t> seen;
+  for_each_bit(bits, [&](uint32_t i) { seen.push_back(i); });
+  EXPECT_EQ(seen, set);
+  seen.clear();
+  for_each_bit(Bits(2, 0), [&](uint32_t i) { seen.push_back(i); });
+  EXPECT_TRUE(seen.empty());
+}
+
 TEST(ConcaveLines, BoxHasNoConcaveLineAndNoCandidate) {
   Preprocessed pre = prep(test::box_building());  // 10 × 6 × 5
   const DecomposeParams dp;
