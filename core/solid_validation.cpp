@@ -706,8 +706,10 @@ bool face_rules(size_t fi, const std::vector<std::vector<uint32_t>>& rings, cons
   for (const auto& p : centred) worst = std::max(worst, std::abs(pl.signed_distance(p)));
   const bool planar = worst <= tol.planarity || fp.size() == 3;
   const std::string where = "face " + std::to_string(fi);
-  const std::string off_plane = where + ": a point lies " + fmt(worst) +
-                                " m from the face's plane (tolerance " + fmt(tol.planarity) + " m)";
+  auto off_plane = [&] {  // only for a face that is not planar: formatting is most of a face's check
+    return where + ": a point lies " + fmt(worst) + " m from the face's plane (tolerance " + fmt(tol.planarity) +
+           " m)";
+  };
   if (tol.normals_deg > 0) {
     // val3dity's polygon rules, in coordinates local to the face (city coordinates are large).
     const Vec3 o = p3[rings[0][0]];
@@ -727,7 +729,7 @@ bool face_rules(size_t fi, const std::vector<std::vector<uint32_t>>& rings, cons
         log.add(solid_code::kRingSelfIntersection,
                 where + ": a ring touches or crosses itself, or has no area, in the face's plane");
       } else {
-        log.add(solid_code::kNonPlanarPolygon, off_plane);
+        log.add(solid_code::kNonPlanarPolygon, off_plane());
       }
       out.bad_faces.emplace_back(fi, solid_code::kRingSelfIntersection);
       return false;
@@ -768,7 +770,7 @@ bool face_rules(size_t fi, const std::vector<std::vector<uint32_t>>& rings, cons
   }
   if (!planar) {
     out.bad_faces.emplace_back(fi, solid_code::kNonPlanarPolygon);
-    log.add(solid_code::kNonPlanarPolygon, off_plane);
+    log.add(solid_code::kNonPlanarPolygon, off_plane());
   }
   n_out = n;
   return true;
