@@ -707,8 +707,8 @@ bool face_rules(size_t fi, const std::vector<std::vector<uint32_t>>& rings, cons
   const bool planar = worst <= tol.planarity || fp.size() == 3;
   const std::string where = "face " + std::to_string(fi);
   auto off_plane = [&] {  // only for a face that is not planar: formatting is most of a face's check
-    return where + ": a point lies " + fmt(worst) + " m from the face's plane (tolerance " + fmt(tol.planarity) +
-           " m)";
+    return where + ": a point lies " + fmt(worst) + " m from the face's plane (tolerance " +
+           fmt(tol.planarity) + " m)";
   };
   if (tol.normals_deg > 0) {
     // val3dity's polygon rules, in coordinates local to the face (city coordinates are large).
