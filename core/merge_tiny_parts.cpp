@@ -15,27 +15,49 @@ namespace mc::level {
 
 // Merges parts smaller than v_min into a neighbour (docs/algorithm.md §14.2), smallest first;
 // parts without a neighbour they can join stay.
+namespace {
+
+double volume_of(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  double v = 0;
+  for (uint32_t c : cells) v += cx.cell_volume(c);
+  return v;
+}
+
+// The cells' distinct vertex ids, ascending (cells share them).
+std::vector<uint32_t> vertices_of(const CellComplex& cx, const std::vector<uint32_t>& cells) {
+  std::vector<uint32_t> ids;
+  for (uint32_t c : cells)
+    for (uint32_t v : cx.cell_vertices(c)) ids.push_back(v);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
+std::vector<uint32_t> united(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+  std::vector<uint32_t> ids;
+  ids.reserve(a.size() + b.size());
+  std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(ids));
+  return ids;
+}
+
+// The volume of the hull of the vertices `ids`.
+double hull_volume(const CellComplex& cx, const std::vector<uint32_t>& ids, HullCache* hulls) {
+  std::vector<Vec3> pts;
+  pts.reserve(ids.size());
+  for (uint32_t v : ids) pts.push_back(cx.point(v));
+  return hulls ? hulls->get(pts)->volume : convex_hull(pts).volume;
+}
+
+}  // namespace
+
 void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min, HullCache* hulls) {
   // Each part's volume (summed in its cell order) and distinct vertex ids, kept across the merges:
   // a merge changes only its target, whose values are then what a fresh pass would compute.
-  auto volume_of = [&](const std::vector<uint32_t>& cells) {
-    double v = 0;
-    for (uint32_t c : cells) v += cx.cell_volume(c);
-    return v;
-  };
-  auto vertices_of = [&](const std::vector<uint32_t>& cells) {
-    std::vector<uint32_t> ids;  // each vertex once (cells share them)
-    for (uint32_t c : cells)
-      for (uint32_t v : cx.cell_vertices(c)) ids.push_back(v);
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    return ids;
-  };
   std::vector<double> vol;
   std::vector<std::vector<uint32_t>> verts;
   for (const LevelPart& p : parts) {
-    vol.push_back(volume_of(p.cells));
-    verts.push_back(vertices_of(p.cells));
+    vol.push_back(volume_of(cx, p.cells));
+    verts.push_back(vertices_of(cx, p.cells));
   }
   constexpr uint32_t kNoPart = ~0u;
   std::vector<uint32_t> owner(cx.num_cells(), kNoPart);
@@ -62,18 +84,6 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
     // hull grows least; then the largest shared area (the research code's rule). A sliver can be
     // long: merged into the neighbour it shares most area with, it can take a convex box's
     // convexity far down (docs/design.md, "Tiny parts merge where the hull grows least").
-    auto hull_of = [&](const std::vector<uint32_t>& ids) {
-      std::vector<Vec3> pts;
-      pts.reserve(ids.size());
-      for (uint32_t v : ids) pts.push_back(cx.point(v));
-      return hulls ? hulls->get(pts)->volume : convex_hull(pts).volume;
-    };
-    auto united = [&](const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
-      std::vector<uint32_t> ids;
-      ids.reserve(a.size() + b.size());
-      std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(ids));
-      return ids;
-    };
     const double tol = 1e-9 * std::max(1.0, v_min);
     // Each neighbour's union evaluated in parallel (they only read the complex), then chosen in
     // neighbour order as one after the other would.
@@ -84,8 +94,8 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
                         std::vector<uint32_t> merged = parts[p].cells;
                         merged.insert(merged.end(), parts[victim].cells.begin(), parts[victim].cells.end());
                         if (!has_pinch_edge(cx, merged))
-                          growths[i] =
-                              hull_of(united(verts[p], verts[victim])) - hull_of(verts[p]) - vol[victim];
+                          growths[i] = hull_volume(cx, united(verts[p], verts[victim]), hulls) -
+                                       hull_volume(cx, verts[p], hulls) - vol[victim];
                       }));
     int target = -1;
     double best_growth = 0, best_area = 0;
@@ -106,7 +116,7 @@ void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, doub
     auto& dst = parts[target].cells;
     dst.insert(dst.end(), parts[victim].cells.begin(), parts[victim].cells.end());
     std::sort(dst.begin(), dst.end());
-    vol[target] = volume_of(dst);
+    vol[target] = volume_of(cx, dst);
     verts[target] = united(verts[target], verts[victim]);
     parts.erase(parts.begin() + victim);
     vol.erase(vol.begin() + victim);

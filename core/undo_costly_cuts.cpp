@@ -16,6 +16,24 @@
 
 namespace mc::level {
 
+namespace {
+
+// The analyses of the previous parts `qs` (indices into prev_cells) as single parts of the level's
+// space, in parallel (they only read the complex); the others are left empty.
+std::vector<PartAnalysis> analyze_whole(const LevelSpace& ls,
+                                        const std::vector<std::vector<uint32_t>>& prev_cells,
+                                        const std::vector<uint32_t>& qs, const AnalysisContext& ctx) {
+  std::vector<PartAnalysis> info(prev_cells.size());
+  tbb::parallel_for(size_t(0), qs.size(), with_thread_tag([&](size_t k) {
+                      Bits whole(ls.space.words(), 0);
+                      for (uint32_t c : prev_cells[qs[k]]) set_bit(whole, ls.local.at(c));
+                      info[qs[k]] = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
+                    }));
+  return info;
+}
+
+}  // namespace
+
 // Undoes the cuts of a level that raise its whole-building cost (decompose.uncut_convexity).
 // Each part is searched with its own normalisers (docs/algorithm.md §11.2), so a search can cut a
 // nearly convex part into pieces that raise the level's cost (§11.1 with the normalisers of §11.3);
@@ -68,18 +86,12 @@ void refuse_costly_cuts(const Preprocessed& pre, const DecomposeParams& p, const
     weighted += weighted_convexity(pi);
     volume += pi.volume;
   }
-  // The previous parts of the groups that were cut, each analysed whole (in parallel: they only
-  // read the complex), then weighed group by group in root order.
+  // The previous parts of the groups that were cut, each analysed whole, then weighed group by
+  // group in root order.
   std::vector<uint32_t> whole_parts;
   for (const auto& [g, js] : parts_of)
     if (js.size() > 1) whole_parts.insert(whole_parts.end(), prevs_of[g].begin(), prevs_of[g].end());
-  std::vector<PartAnalysis> whole_info(prev.size());
-  tbb::parallel_for(size_t(0), whole_parts.size(), with_thread_tag([&](size_t k) {
-                      const uint32_t q = whole_parts[k];
-                      Bits whole(ls.space.words(), 0);
-                      for (uint32_t c : prev_cells[q]) set_bit(whole, ls.local.at(c));
-                      whole_info[q] = analyze_part(ls.space, std::move(whole), ctx, kNoNewPlanes);
-                    }));
+  const std::vector<PartAnalysis> whole_info = analyze_whole(ls, prev_cells, whole_parts, ctx);
   std::vector<std::tuple<double, uint32_t, double>> costly;  // (cost change, group, Σ V·convexity lost)
   for (const auto& [g, js] : parts_of) {
     const std::vector<uint32_t>& qs = prevs_of[g];
