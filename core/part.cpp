@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/hull.hpp"
+#include "core/key_order.hpp"
 #include "core/stamped_table.hpp"
 #include "core/surface.hpp"
 #include "core/union_find.hpp"
@@ -452,46 +453,6 @@ std::vector<Vec3> hull_points(const CellComplex& cx, const std::vector<uint64_t>
   return pts;
 }
 
-// The edge uses' indices in (edge key, position) order: the order a stable sort by key gives.
-// Uses are chained by their edge's first (smaller) vertex in a per-thread table by vertex id
-// (core/stamped_table.hpp); only those vertices are sorted, and each one's few uses are sorted
-// by key in place. Sorting every use was a tenth of the analysis.
-std::vector<uint32_t> uses_in_key_order(const CellComplex& cx,
-                                        const std::vector<std::pair<uint64_t, Incidence>>& edge_uses) {
-  constexpr uint32_t kEnd = ~0u;
-  const uint32_t n = static_cast<uint32_t>(edge_uses.size());
-  thread_local StampedTable<uint32_t> last;  // first vertex -> its latest use
-  last.next_round(cx.num_vertices());
-  std::vector<uint32_t> before(n);  // the previous use with the same first vertex
-  std::vector<uint32_t> firsts;
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t a = static_cast<uint32_t>(edge_uses[i].first >> 32);
-    if (uint32_t* l = last.find(a)) {
-      before[i] = *l;
-      *l = i;
-    } else {
-      before[i] = kEnd;
-      last.set(a, i);
-      firsts.push_back(a);
-    }
-  }
-  std::sort(firsts.begin(), firsts.end());
-  std::vector<uint32_t> order;
-  order.reserve(n);
-  for (const uint32_t a : firsts) {
-    const size_t begin = order.size();
-    for (uint32_t i = *last.find(a); i != kEnd; i = before[i]) order.push_back(i);
-    std::reverse(order.begin() + static_cast<long>(begin), order.end());  // positions ascending
-    for (size_t k = begin + 1; k < order.size(); ++k) {  // insertion sort by key: stable, few uses
-      const uint32_t x = order[k];
-      size_t m = k;
-      for (; m > begin && edge_uses[order[m - 1]].first > edge_uses[x].first; --m) order[m] = order[m - 1];
-      order[m] = x;
-    }
-  }
-  return order;
-}
-
 // Dihedral edges between boundary faces on different planes (2-manifold edges only), their
 // angles not yet measured (dihedral_angles); pinch edges and pinch vertices counted into
 // info.pinch_edges.
@@ -501,7 +462,9 @@ std::vector<DihedralEdge> dihedral_edges(const CellComplex& cx,
                                          size_t& components) {
   std::vector<DihedralEdge> edges;
   // The uses of each edge, edges in key order (deterministic), uses in boundary order.
-  const std::vector<uint32_t> order = uses_in_key_order(cx, edge_uses);
+  const std::vector<uint32_t> order = stable_key_order(
+      static_cast<uint32_t>(edge_uses.size()), [&](uint32_t i) { return edge_uses[i].first; },
+      cx.num_vertices());
   std::vector<Incidence> uses;
   uses.reserve(edge_uses.size());
   for (const uint32_t i : order) uses.push_back(edge_uses[i].second);

@@ -231,6 +231,30 @@ TEST(PartBits, ForEachBitVisitsTheSetBitsAscending) {
   EXPECT_TRUE(seen.empty());
 }
 
+// A roof apex where 24 faces meet: the analysis groups a part's edge uses by their first vertex
+// (core/key_order.hpp). Every edge must still have its two uses: a convex solid, no pinch, no line.
+TEST(ConcaveLines, ConeRoofApexOfManyFacesIsConvexWithoutPinches) {
+  PolygonMesh m;
+  const int n = 24;
+  std::vector<std::pair<double, double>> ring;
+  for (int i = 0; i < n; ++i)
+    ring.emplace_back(6 + 6 * std::cos(2 * M_PI * i / n), 6 + 6 * std::sin(2 * M_PI * i / n));
+  test::add_prism(m, ring, 0, 6);
+  m.faces.pop_back();  // the flat top: a cone roof instead
+  const uint32_t apex = static_cast<uint32_t>(m.vertices.size());
+  m.vertices.push_back({6, 6, 10});
+  for (uint32_t i = 0; i < static_cast<uint32_t>(n); ++i)
+    m.faces.push_back({{{static_cast<uint32_t>(n) + i, static_cast<uint32_t>(n) + (i + 1) % n, apex}},
+                       m.label_index("RoofSurface")});
+  Preprocessed pre = prep(m);
+  DecomposeParams dp;
+  const PartAnalysis a = analyze_cell(pre, dp, 0.01);
+  EXPECT_EQ(a.pinch_edges, 0);
+  EXPECT_NEAR(a.hull_volume, a.volume, 1e-9 * a.volume);
+  EXPECT_EQ(a.e_all, 0);
+  EXPECT_GT(a.volume, 0.9 * (M_PI * 36 * 6 + M_PI * 36 * 4 / 3));  // the 24-gon's cylinder and cone
+}
+
 TEST(ConcaveLines, BoxHasNoConcaveLineAndNoCandidate) {
   Preprocessed pre = prep(test::box_building());  // 10 × 6 × 5
   const DecomposeParams dp;
