@@ -13,8 +13,6 @@
 
 namespace mc::level {
 
-// Merges parts smaller than v_min into a neighbour (docs/algorithm.md §14.2), smallest first;
-// parts without a neighbour they can join stay.
 namespace {
 
 double volume_of(const CellComplex& cx, const std::vector<uint32_t>& cells) {
@@ -50,6 +48,8 @@ double hull_volume(const CellComplex& cx, const std::vector<uint32_t>& ids, Hull
 
 }  // namespace
 
+// Merges parts smaller than v_min into a neighbour (docs/algorithm.md §14.2), smallest first;
+// parts without a neighbour they can join stay.
 void merge_tiny_parts(const CellComplex& cx, std::vector<LevelPart>& parts, double v_min, HullCache* hulls) {
   // Each part's volume (summed in its cell order) and distinct vertex ids, kept across the merges:
   // a merge changes only its target, whose values are then what a fresh pass would compute.

@@ -408,7 +408,7 @@ uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
         const uint32_t a = at(k), b = at((k + 1) % n);
         edge_uses.push_back(
             {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), {side.facet, s.cells[i], a, b, faces}});
-        vertex_planes.push_back((uint64_t(a) << 32) | cx.facet(side.facet).plane);
+        vertex_planes.push_back((uint64_t(a) << 32) | facet.plane);
       }
       ++faces;
     }
@@ -422,9 +422,10 @@ uint32_t part_boundary(const CellSpace& s, PartAnalysis& info,
 // (docs/algorithm.md §9.2), and the hull is most of the analysis' time. `vertices` counts the
 // boundary vertices. Each corner is looked up in a per-thread table by vertex id holding the
 // first two planes seen (core/stamped_table.hpp): linear in the corners, which sorting them is
-// not (a tenth of the analysis). The points come in vertex id order.
-std::vector<Vec3> hull_points(const CellComplex& cx, const std::vector<uint64_t>& vertex_planes,
-                              size_t& vertices) {
+// not (a tenth of the analysis). Returns the hull points' vertex ids, unordered: a convex part
+// needs only the count (hull_input orders them).
+std::vector<uint32_t> hull_vertices(const CellComplex& cx, const std::vector<uint64_t>& vertex_planes,
+                                    size_t& vertices) {
   struct Planes {
     uint32_t plane[2];
     uint32_t count;
@@ -446,6 +447,11 @@ std::vector<Vec3> hull_points(const CellComplex& cx, const std::vector<uint64_t>
       corners.push_back(v);
     }
   }
+  return corners;
+}
+
+// The hull's input: the hull vertices' points in vertex id order.
+std::vector<Vec3> hull_input(const CellComplex& cx, std::vector<uint32_t> corners) {
   std::sort(corners.begin(), corners.end());
   std::vector<Vec3> pts;
   pts.reserve(corners.size());
@@ -617,7 +623,7 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
   std::vector<uint64_t> vertex_planes;  // (vertex << 32 | plane) of every boundary facet corner
   const uint32_t faces = part_boundary(s, info, edge_uses, vertex_planes);
   size_t vertices = 0;
-  const std::vector<Vec3> pts = hull_points(cx, vertex_planes, vertices);
+  std::vector<uint32_t> corners = hull_vertices(cx, vertex_planes, vertices);
   size_t components = 0;  // of the boundary surface
   std::vector<DihedralEdge> edges = dihedral_edges(cx, edge_uses, vertices, faces, info, components);
   // One closed boundary surface without pinches whose every edge is convex bounds a convex solid:
@@ -629,6 +635,7 @@ PartAnalysis analyze_part(const CellSpace& s, Bits bits, const AnalysisContext& 
     info.hull_volume = info.volume;
     return info;
   }
+  const std::vector<Vec3> pts = hull_input(cx, std::move(corners));
   const std::shared_ptr<const Hull> hull_ptr =
       ctx.hulls ? ctx.hulls->get(pts) : std::make_shared<const Hull>(convex_hull(pts));
   const Hull& hull = *hull_ptr;
