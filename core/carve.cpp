@@ -395,15 +395,12 @@ CellVote score_vote(double r, double v, const BBox& box, const CarveParams& p, c
   return out;
 }
 
-// A valid solid's cell that the surface only grazes (CarveParams::surface_enters): the points in
-// the band along its facets are voted as in a full vote (same ids, so the same labels), and the
-// first `vote_batch` points beyond the band decide all of those by majority. False (nothing
-// counted) when the surface does enter the cell. Reentrant (the two children of a split are
-// voted at once).
-bool band_vote(const std::vector<Plane>& outward, const BBox& box, const std::vector<Vec3>& pts,
-               uint64_t first_id, const CarveParams& p, const PointClassifier& classify, size_t& in,
-               size_t& points) {
-  if (p.surface_enters(outward, box)) return false;
+// A valid solid's cell that the surface only grazes (CarveParams::grazing): the points in the band
+// along its facets are voted as in a full vote (same ids, so the same labels), and the first
+// `vote_batch` points beyond the band decide all of those by majority. Reentrant (the two
+// children of a split are voted at once).
+void band_vote(const std::vector<Plane>& outward, const std::vector<Vec3>& pts, uint64_t first_id,
+               const CarveParams& p, const PointClassifier& classify, size_t& in, size_t& points) {
   std::vector<Vec3> voted;
   std::vector<uint64_t> ids;
   std::vector<uint8_t> in_batch, flags;
@@ -429,7 +426,6 @@ bool band_vote(const std::vector<Plane>& outward, const BBox& box, const std::ve
   }
   if (2 * batch_in > batch) in += rest;
   points += voted.size();
-  return true;
 }
 
 // A valid solid's touched cell labelled by its exact inside volume (CarveParams::inside_volume,
@@ -469,22 +465,30 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
   const auto pts = sample_cell(
       cx, c, free_cell ? std::min<int>(p.vote_batch, static_cast<int>(n)) : static_cast<int>(n), seed);
   size_t in = 0;
-  // The cell's outward facet planes, for the band's and the regions' tests alike.
-  const std::vector<Plane> outward = !free_cell && p.vote_batch > 0 && (p.surface_enters || p.regions)
-                                         ? outward_planes(cx, c)
-                                         : std::vector<Plane>{};
-  const bool grazed = !free_cell && p.surface_enters && p.vote_batch > 0 &&
-                      band_vote(outward, box, pts, first_id, p, classify, in, points);
+  // The cell's outward facet planes and the triangles near it, for the band's and the regions'
+  // tests alike (one query of the index). Where both read the triangles entering by a hair, the
+  // list is clipped once.
+  const bool surface_tests = !free_cell && p.vote_batch > 0 && (p.grazing || p.regions);
+  const std::vector<Plane> outward = surface_tests ? outward_planes(cx, c) : std::vector<Plane>{};
+  const std::vector<uint32_t> near =
+      surface_tests ? (p.grazing ? p.grazing : p.regions)->touching(box) : std::vector<uint32_t>{};
+  std::optional<std::vector<uint32_t>> entering;
+  if (surface_tests && p.regions && p.regions == p.grazing && p.graze_depth == k.hair)
+    entering = p.regions->entering(outward, near, k.hair);
+  const bool grazed = surface_tests && p.grazing &&
+                      !(entering ? !entering->empty() : p.grazing->enters(outward, near, p.graze_depth));
+  if (grazed) band_vote(outward, pts, first_id, p, classify, in, points);
   if (!grazed && !free_cell && p.regions && p.vote_batch > 0) {
+    if (!entering) entering = p.regions->entering(outward, near, k.hair);
     // The score queues a cell when more than `inconsistency` c³ of it is mislabelled, i.e. when
     // both labels hold more than that volume's share of the n points.
     const size_t mixed_at =
         may_stop && v > 0
             ? static_cast<size_t>(std::floor(p.inconsistency * k.unit * static_cast<double>(n) / v)) + 1
             : 0;
-    const RegionCount count = region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions,
-                                          p.regions->entering(outward, box, k.hair), k.hair, p.oracle_box,
-                                          classify, points, mixed_at);
+    const RegionCount count =
+        region_vote(pts, first_id, static_cast<size_t>(p.vote_batch), *p.regions, std::move(*entering),
+                    k.hair, p.oracle_box, classify, points, mixed_at);
     if (!count.complete) {
       // The label and the score (only the queue's order reads it) are estimated with the
       // unsettled points counted half inside: the settled ones alone lie away from the surface

@@ -41,12 +41,13 @@ struct CarveParams {
   double hair_or_default() const { return hair >= 0 ? hair : 0.1 * dist; }
   // Whether the input surface touches a box (conservative); null = always full votes.
   std::function<bool(const BBox&)> surface_touches;
-  // For a valid solid (docs/algorithm.md §7.3, "grazed cells"): whether the input surface reaches
-  // deeper than fitting noise into the convex cell {x : n·x + d <= 0 for every outward facet
-  // plane} whose box is given. A cell it does not is uniform except in a band along its facets:
-  // only the sample points within `band` of a facet are voted, and `vote_batch` of the others
-  // decide the rest. Null = every touched cell gets the full vote.
-  std::function<bool(const std::vector<Plane>& outward, const BBox&)> surface_enters;
+  // For a valid solid (docs/algorithm.md §7.3, "grazed cells"): the input surface, to tell whether
+  // it reaches deeper than `graze_depth` (fitting noise) into the convex cell {x : n·x + d <= 0
+  // for every outward facet plane}. A cell it does not is uniform except in a band along its
+  // facets: only the sample points within `band` of a facet are voted, and `vote_batch` of the
+  // others decide the rest. Null = every touched cell gets the full vote.
+  const SurfaceIndex* grazing = nullptr;
+  double graze_depth = 0;
   double band = 0;
   // When set, touched cells are voted by regions (boxes of their points that no triangle of
   // this index touches, and that do not straddle `oracle_box`, are decided by `vote_batch`

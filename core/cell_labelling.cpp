@@ -116,10 +116,8 @@ Labelling CellLabeller::label(bool use_vertical, Clock::time_point deadline) con
   // A valid solid's cell that the surface reaches at most a hair into (fitting noise of the
   // faces along its facets) is uniform but for that band (docs/algorithm.md §7.3).
   if (out_.fast_path && !use_vertical && p_.grazed_cells) {
-    const double hair = 0.1 * out_.dist;
-    c.surface_enters = [&index, hair](const std::vector<Plane>& outward, const BBox& b) {
-      return index.enters(outward, b, hair);
-    };
+    c.grazing = &index;
+    c.graze_depth = 0.1 * out_.dist;
     c.band = out_.dist;
   }
   // A valid solid's touched cells are labelled by their exact inside volume (docs/design.md

@@ -67,14 +67,18 @@ void add_cap(std::vector<Vec3>& pts, const Vec3& n, double eps, ConvexPolytope& 
 
 }  // namespace
 
-void clip_polytope(const ConvexPolytope& p, const Plane& keep_below, double eps, ConvexPolytope& out) {
+namespace {
+
+// clip_polytope for a plane that cuts `p` (polytope_side 0).
+void clip_cut(const ConvexPolytope& p, const Plane& keep_below, double eps, ConvexPolytope& out) {
   out.clear();
-  const int side = polytope_side(p, keep_below, eps);
-  if (side < 0) {
-    out = p;
-    return;
+  // Each point's distance once (within eps: 0); a face's edges read them at both ends.
+  thread_local std::vector<double> dist;
+  dist.resize(p.points.size());
+  for (size_t i = 0; i < p.points.size(); ++i) {
+    const double s = keep_below.signed_distance(p.points[i]);
+    dist[i] = std::abs(s) <= eps ? 0 : s;
   }
-  if (side > 0) return;
   thread_local std::vector<Vec3> on_plane;
   on_plane.clear();
   bool has_cap = false;  // a face of `p` lies on the plane: it is the cut's face already
@@ -82,11 +86,10 @@ void clip_polytope(const ConvexPolytope& p, const Plane& keep_below, double eps,
     const uint32_t b = p.face_begin(f), e = p.ends[f];
     bool all_on = true;
     for (uint32_t i = b; i < e; ++i) {
+      const uint32_t j = i + 1 < e ? i + 1 : b;
       const Vec3& x0 = p.points[i];
-      const Vec3& x1 = p.points[i + 1 < e ? i + 1 : b];
-      double s0 = keep_below.signed_distance(x0), s1 = keep_below.signed_distance(x1);
-      if (std::abs(s0) <= eps) s0 = 0;
-      if (std::abs(s1) <= eps) s1 = 0;
+      const Vec3& x1 = p.points[j];
+      const double s0 = dist[i], s1 = dist[j];
       all_on &= s0 == 0;
       if (s0 <= 0) out.points.push_back(x0);
       if (s0 == 0) on_plane.push_back(x0);
@@ -101,6 +104,19 @@ void clip_polytope(const ConvexPolytope& p, const Plane& keep_below, double eps,
     out.close_face();
   }
   if (!has_cap) add_cap(on_plane, keep_below.n, eps, out);
+}
+
+}  // namespace
+
+void clip_polytope(const ConvexPolytope& p, const Plane& keep_below, double eps, ConvexPolytope& out) {
+  const int side = polytope_side(p, keep_below, eps);
+  if (side < 0) {
+    out = p;
+    return;
+  }
+  out.clear();
+  if (side > 0) return;
+  clip_cut(p, keep_below, eps, out);
 }
 
 ColumnVolume::ColumnVolume(const TriangleSoup& soup) {
@@ -199,7 +215,7 @@ double ColumnVolume::under(const ConvexPolytope& cell, const Column& t, double e
     const int side = polytope_side(*at, pl, eps);
     if (side > 0) return 0;
     if (side < 0) continue;
-    clip_polytope(*at, pl, eps, scratch[next]);
+    clip_cut(*at, pl, eps, scratch[next]);
     at = &scratch[next];
     next ^= 1;
     if (at->empty()) return 0;

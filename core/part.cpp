@@ -1,6 +1,7 @@
 #include "core/part.hpp"
 
 #include <algorithm>
+#include <array>
 #include <optional>
 #include <cmath>
 #include <map>
@@ -307,54 +308,98 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
   const size_t first_lines = lines.size();
   // The lines appended since, by plane (each list ascending): rows scan only their planes' lists.
   std::unordered_map<uint32_t, std::vector<size_t>> added;
-  std::vector<size_t> cand;
-  // After a merge at (i, j) the scan starts again from the first pair, but every pair of lines
-  // that were both there before and whose first line came before i was found not to merge (a
-  // pure function of the two lines): those rows only look at the new lines (from `first_new`).
-  size_t resume = 0, first_new = 0;
+  auto planes_of = [&](size_t k) {
+    const ConcaveLine& l = lines[k].line;
+    return std::array<uint32_t, 2>{l.p1, l.p2};
+  };
+  // Calls f(k) for every line k >= from on plane pl (the first lines, then the appended ones).
+  auto for_lines_on = [&](uint32_t pl, size_t from, auto&& f) {
+    if (from < first_lines)
+      for (auto lo =
+               std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
+           lo != by_plane.end() && lo->first == pl; ++lo)
+        f(lo->second);
+    if (auto it = added.find(pl); it != added.end())
+      for (auto k = std::lower_bound(it->second.begin(), it->second.end(), from); k != it->second.end(); ++k)
+        f(*k);
+  };
+  // Per line, what merged_line tests first (its direction and its middle), kept compact: most
+  // pairs on a plane are not parallel or lie more than δ apart, and are rejected from these alone.
+  struct Reach {
+    Vec3 point, dir, mid;
+  };
+  std::vector<Reach> reach;
+  auto add_reach = [&](size_t from) {
+    for (size_t k = from; k < lines.size(); ++k) {
+      const ConcaveLine& l = lines[k].line;
+      reach.push_back({l.point, l.dir, l.point + l.dir * (0.5 * (l.t0 + l.t1))});
+    }
+  };
+  add_reach(0);
+  // The same rejections as merged_line's, on the same values.
+  auto may_merge = [&](size_t i, size_t j) {
+    const Reach &a = reach[i], &b = reach[j];
+    if (std::abs(dot(a.dir, b.dir)) < 0.95) return false;
+    const Vec3 off = b.mid - a.point;
+    return !(norm(off - a.dir * dot(off, a.dir)) > delta);
+  };
+  std::vector<size_t> cand, rows;
+  // Tries row i against the live lines from `from` on that share a plane with it, in index order;
+  // two lines merge only if one of them is reflex (merged_line), so a convex row pairs only with
+  // reflex lines. A merge marks both dead and appends the remainders and the merged line.
+  size_t first_new = 0;
+  auto try_row = [&](size_t i, size_t from) {
+    cand.clear();
+    const bool any = lines[i].reflex;
+    for (uint32_t pl : planes_of(i))
+      for_lines_on(pl, from, [&](size_t k) {
+        if (alive[k] && (any || lines[k].reflex)) cand.push_back(k);
+      });
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    for (const size_t j : cand) {
+      if (!may_merge(i, j)) continue;
+      const std::optional<ConcaveLine> M = merged_line(lines[i], lines[j], reg, delta);
+      if (!M) continue;
+      // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were; the
+      // pieces and the merged line are appended.
+      const size_t before = lines.size();
+      for (const size_t src : {i, j}) append_remainders(lines, src, *M, delta);
+      lines.push_back({*M, M->angle > M_PI});
+      alive[i] = alive[j] = 0;
+      alive.resize(lines.size(), 1);
+      add_reach(before);
+      for (size_t k = before; k < lines.size(); ++k) {
+        added[lines[k].line.p1].push_back(k);
+        if (lines[k].line.p2 != lines[k].line.p1) added[lines[k].line.p2].push_back(k);
+      }
+      first_new = before;
+      return true;
+    }
+    return false;
+  };
+  // Each pass looks for the first merging pair in (row, line) order. After a merge at row i every
+  // pair of lines that were both there before and whose first line came before i was found not to
+  // merge (a pure function of the two lines), so the rows before i only pair with the new lines:
+  // only the rows that share a plane with a new line are tried, then every row from i on.
+  size_t resume = 0;
   for (int guard = 0; guard < 1000; ++guard) {
     bool merged = false;
-    for (size_t i = 0; i < lines.size() && !merged; ++i) {
-      if (!alive[i]) continue;
-      cand.clear();
-      // Rows before `resume` only pair with the new lines; the others with every later line.
-      const size_t from = i < resume ? std::max(i + 1, first_new) : i + 1;
-      // Two lines merge only if one of them is reflex (merged_line): a convex row pairs only
-      // with reflex lines.
-      const bool any = lines[i].reflex;
-      for (uint32_t pl : {lines[i].line.p1, lines[i].line.p2}) {
-        if (from < first_lines) {
-          auto lo = std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
-          for (; lo != by_plane.end() && lo->first == pl; ++lo)
-            if (alive[lo->second] && (any || lines[lo->second].reflex)) cand.push_back(lo->second);
-        }
-        if (auto it = added.find(pl); it != added.end())
-          for (auto k = std::lower_bound(it->second.begin(), it->second.end(), from); k != it->second.end();
-               ++k)
-            if (alive[*k] && (any || lines[*k].reflex)) cand.push_back(*k);
-      }
-      std::sort(cand.begin(), cand.end());
-      cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-      for (size_t ci = 0; ci < cand.size() && !merged; ++ci) {
-        const size_t j = cand[ci];
-        const std::optional<ConcaveLine> M = merged_line(lines[i], lines[j], reg, delta);
-        if (!M) continue;
-        // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were; the
-        // pieces and the merged line are appended.
-        const size_t before = lines.size();
-        for (const size_t src : {i, j}) append_remainders(lines, src, *M, delta);
-        lines.push_back({*M, M->angle > M_PI});
-        alive[i] = alive[j] = 0;
-        alive.resize(lines.size(), 1);
-        for (size_t k = before; k < lines.size(); ++k) {
-          added[lines[k].line.p1].push_back(k);
-          if (lines[k].line.p2 != lines[k].line.p1) added[lines[k].line.p2].push_back(k);
-        }
-        resume = i;
-        first_new = before;
-        merged = true;
-      }
+    if (resume > 0) {
+      rows.clear();
+      for (size_t k = first_new; k < lines.size(); ++k)
+        for (uint32_t pl : planes_of(k))
+          for_lines_on(pl, 0, [&](size_t r) {
+            if (r < resume && alive[r]) rows.push_back(r);
+          });
+      std::sort(rows.begin(), rows.end());
+      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+      const size_t new_from = first_new;
+      for (size_t ri = 0; ri < rows.size() && !merged; ++ri)
+        if (try_row(rows[ri], new_from)) resume = rows[ri], merged = true;
     }
+    for (size_t i = resume; i < lines.size() && !merged; ++i)
+      if (alive[i] && try_row(i, i + 1)) resume = i, merged = true;
     if (!merged) break;
   }
   size_t kept = 0;

@@ -112,11 +112,24 @@ bool SurfaceIndex::enters(const std::vector<Plane>& outward, const BBox& b, doub
   return false;
 }
 
+bool SurfaceIndex::enters(const std::vector<Plane>& outward, const std::vector<uint32_t>& near,
+                          double depth) const {
+  std::vector<Vec3> poly, next;
+  return std::any_of(near.begin(), near.end(), [&](uint32_t i) {
+    return triangle_enters(impl_->triangles[i], outward, depth, poly, next);
+  });
+}
+
 std::vector<uint32_t> SurfaceIndex::entering(const std::vector<Plane>& outward, const BBox& b,
                                              double depth) const {
+  return entering(outward, touching(b), depth);
+}
+
+std::vector<uint32_t> SurfaceIndex::entering(const std::vector<Plane>& outward,
+                                             const std::vector<uint32_t>& near, double depth) const {
   std::vector<uint32_t> ids;
   std::vector<Vec3> poly, next;
-  for (uint32_t i : touching(b))
+  for (uint32_t i : near)
     if (triangle_enters(impl_->triangles[i], outward, depth, poly, next)) ids.push_back(i);
   return ids;
 }

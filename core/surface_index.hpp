@@ -31,9 +31,15 @@ class SurfaceIndex {
   // {x : n·x + d <= 0 for every plane of `outward`} whose box is `box` (triangles clipped in
   // doubles). A triangle lying along the region's boundary, within `depth` of it, does not.
   bool enters(const std::vector<Plane>& outward, const BBox& box, double depth) const;
+  // The same for the triangles `near` (ids from `touching` the region's box): one query of the
+  // tree serves several tests of a region.
+  bool enters(const std::vector<Plane>& outward, const std::vector<uint32_t>& near, double depth) const;
   // The triangles (ids, ascending) that reach more than `depth` into that region: those that do
   // not lie along its boundary, within `depth` of it.
   std::vector<uint32_t> entering(const std::vector<Plane>& outward, const BBox& box, double depth) const;
+  // The same among the triangles `near` (ids from `touching` the region's box, ascending).
+  std::vector<uint32_t> entering(const std::vector<Plane>& outward, const std::vector<uint32_t>& near,
+                                 double depth) const;
 
  private:
   struct Impl;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "core/plane.hpp"
@@ -62,6 +63,35 @@ TEST(SurfaceIndex, FittingNoiseAlongAFacetIsNotEnteringButARidgeIs) {
   EXPECT_FALSE(SurfaceIndex(cube(0.0005)).enters(box_planes(air.lo, air.hi), air, 1e-3));
   EXPECT_TRUE(SurfaceIndex(cube(0.0005)).enters(box_planes(air.lo, air.hi), air, 1e-4));
   EXPECT_TRUE(SurfaceIndex(cube(0.05)).enters(box_planes(air.lo, air.hi), air, 1e-3));
+}
+
+TEST(SurfaceIndex, TheTrianglesNearACellAnswerAsTheBoxQueryDoes) {
+  // One query of the tree (touching) serves the entering tests of a cell at any depth: the same
+  // answers as the queries by box, among them the triangles that really enter.
+  const SurfaceIndex index(cube(0.05));
+  const std::vector<std::pair<Vec3, Vec3>> cells = {
+      {{0, 0, 1}, {1, 1, 3}}, {{0.5, -1, -1}, {2, 2, 2}}, {{0, 0, 0}, {1, 1, 1}}, {{3, 3, 3}, {4, 4, 4}}};
+  for (const auto& [lo, hi] : cells) {
+    BBox box;
+    box.add(lo);
+    box.add(hi);
+    const std::vector<Plane> outward = box_planes(lo, hi);
+    const std::vector<uint32_t> near = index.touching(box);
+    for (const double depth : {0.0, 1e-3, 0.04, 0.4, 0.6}) {
+      SCOPED_TRACE(testing::Message() << "cell " << lo.x << "," << lo.z << " depth " << depth);
+      const std::vector<uint32_t> in = index.entering(outward, near, depth);
+      EXPECT_EQ(in, index.entering(outward, box, depth));
+      EXPECT_EQ(index.enters(outward, near, depth), index.enters(outward, box, depth));
+      EXPECT_EQ(index.enters(outward, near, depth), !in.empty());
+      for (const uint32_t t : in) EXPECT_TRUE(std::binary_search(near.begin(), near.end(), t));
+    }
+  }
+  // The ridge's four triangles enter the air above the roof by up to 5 cm; nothing does at 6.
+  BBox air;
+  air.add({0, 0, 1});
+  air.add({1, 1, 3});
+  EXPECT_EQ(index.entering(box_planes(air.lo, air.hi), index.touching(air), 1e-3).size(), 4u);
+  EXPECT_TRUE(index.entering(box_planes(air.lo, air.hi), index.touching(air), 0.06).empty());
 }
 
 TEST(SurfaceIndex, AnEmptySurfaceEntersNothing) {
