@@ -166,7 +166,7 @@ ColumnVolume::ColumnVolume(const TriangleSoup& soup) {
   }
 }
 
-std::vector<uint32_t> ColumnVolume::candidates(const BBox& box) const {
+std::vector<uint32_t> ColumnVolume::candidates(const BBox& box, size_t limit) const {
   std::vector<uint32_t> ids;
   if (columns_.empty()) return ids;
   // Clamped before the cast: a box far outside the grid must not overflow an int.
@@ -187,8 +187,10 @@ std::vector<uint32_t> ColumnVolume::candidates(const BBox& box) const {
         const BBox& b = columns_[t].box;
         // A column matters when its triangle overlaps the cell in plan and rises above its floor.
         if (b.lo.x <= box.hi.x && box.lo.x <= b.hi.x && b.lo.y <= box.hi.y && box.lo.y <= b.hi.y &&
-            b.hi.z > box.lo.z)
+            b.hi.z > box.lo.z) {
           ids.push_back(t);
+          if (ids.size() > limit) return ids;  // more than the caller will measure
+        }
       }
     }
   return ids;
@@ -225,7 +227,7 @@ double ColumnVolume::under(const ConvexPolytope& cell, const Column& t, double e
 
 double ColumnVolume::inside(const ConvexPolytope& cell, const BBox& box, size_t max_columns) const {
   const double eps = 1e-9 * (1 + scale_);
-  std::vector<uint32_t> ids = candidates(box);
+  std::vector<uint32_t> ids = candidates(box, max_columns > 0 ? max_columns : SIZE_MAX);
   if (max_columns > 0 && ids.size() > max_columns) return -1;
   std::sort(ids.begin(), ids.end());  // one order of summation: the same sum on every run
   double v = 0;

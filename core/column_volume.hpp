@@ -6,6 +6,7 @@
 // each term a convex polytope clipped from C by at most four planes. The answer depends on the
 // geometry only: no sample points, no seed, the same in any frame up to rounding.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -61,7 +62,9 @@ class ColumnVolume {
     BBox box;
   };
   double under(const ConvexPolytope& cell, const Column& t, double eps) const;
-  std::vector<uint32_t> candidates(const BBox& box) const;
+  // The columns over the box; once more than `limit` are found, the search stops (the caller
+  // only needs to know there are too many).
+  std::vector<uint32_t> candidates(const BBox& box, size_t limit = SIZE_MAX) const;
 
   std::vector<Column> columns_;
   // A plan grid over the columns' boxes: cell (i, j) lists the columns whose box overlaps it.

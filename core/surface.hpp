@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/complex.hpp"
+#include "core/key_order.hpp"
 #include "core/polygon_mesh.hpp"
 #include "core/union_find.hpp"
 
@@ -53,16 +54,28 @@ std::vector<uint32_t> pinch_vertices(const Uses& uses, FaceOf face_of) {
   struct Join {
     uint32_t v, f1, f2;
   };
-  std::vector<uint64_t> node;  // vertex << 32 | face, sorted, unique
-  std::vector<Join> joins;
+  std::vector<uint64_t> incidences;  // vertex << 32 | face
+  std::vector<Join> unordered;
+  uint32_t vertex_bound = 0;
   for (const auto& [key, inc] : uses)
     for (const uint32_t v : {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)}) {
-      for (const auto& x : inc) node.push_back((uint64_t(v) << 32) | face_of(x));
-      if (inc.size() == 2) joins.push_back({v, face_of(inc[0]), face_of(inc[1])});
+      vertex_bound = std::max(vertex_bound, v + 1);
+      for (const auto& x : inc) incidences.push_back((uint64_t(v) << 32) | face_of(x));
+      if (inc.size() == 2) unordered.push_back({v, face_of(inc[0]), face_of(inc[1])});
     }
-  std::sort(node.begin(), node.end());
-  node.erase(std::unique(node.begin(), node.end()), node.end());
-  std::sort(joins.begin(), joins.end(), [](const Join& a, const Join& b) { return a.v < b.v; });
+  // Both ordered by vertex through a table by vertex id (core/key_order.hpp): linear but for the
+  // distinct vertices' sort, where sorting every incidence is not.
+  std::vector<uint64_t> node;  // vertex << 32 | face, sorted, unique
+  node.reserve(incidences.size());
+  for (const uint32_t i : stable_key_order(
+           static_cast<uint32_t>(incidences.size()), [&](uint32_t i) { return incidences[i]; }, vertex_bound))
+    if (node.empty() || node.back() != incidences[i]) node.push_back(incidences[i]);
+  std::vector<Join> joins;
+  joins.reserve(unordered.size());
+  for (const uint32_t i : stable_key_order(
+           static_cast<uint32_t>(unordered.size()),
+           [&](uint32_t i) { return uint64_t(unordered[i].v) << 32; }, vertex_bound))
+    joins.push_back(unordered[i]);
   std::vector<uint32_t> out;
   UnionFind fans;
   size_t j = 0;

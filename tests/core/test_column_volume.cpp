@@ -98,6 +98,21 @@ TEST(ColumnVolume, CellsSharingTheSurfacesFacesAreExact) {
   EXPECT_NEAR(inside(cv, box({-5, -5, 7}, {15, 15, 9})), 0, 1e-9);  // on the ridge's height
 }
 
+TEST(ColumnVolume, MoreColumnsThanTheLimitAreNotMeasured) {
+  // The gable's 6 triangles that face up or down (ground and roofs; the walls face sideways)
+  // stand over the whole house: a cell over all of them has 6 terms, one over the roof's half 4
+  // or fewer.
+  const ColumnVolume cv(gable());
+  const ConvexPolytope all = box({-1, -1, -1}, {11, 7, 9});
+  EXPECT_EQ(cv.columns_over(box_of(all)), 6u);
+  EXPECT_NEAR(cv.inside(all, box_of(all), 6), 330, 1e-9);
+  EXPECT_EQ(cv.inside(all, box_of(all), 5), -1);
+  EXPECT_EQ(cv.inside(all, box_of(all), 1), -1);
+  const ConvexPolytope half = box({0, 0, 5}, {10, 3, 10});
+  EXPECT_LE(cv.columns_over(box_of(half)), 4u);
+  EXPECT_NEAR(cv.inside(half, box_of(half), 4), 20, 1e-9);
+}
+
 TEST(ColumnVolume, OrientationOfTheSurfaceDoesNotMatter) {
   TriangleSoup in = gable();
   for (auto& t : in.triangles) std::swap(t[1], t[2]);
