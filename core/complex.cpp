@@ -1,5 +1,7 @@
 #include "core/complex.hpp"
 
+#include "core/stamped_table.hpp"
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 
@@ -398,10 +400,18 @@ std::vector<uint32_t> CellComplex::outward_loop(uint32_t f, uint32_t c) const {
 }
 
 std::vector<uint32_t> CellComplex::cell_vertices(uint32_t c) const {
+  // Each vertex is on three or more of the cell's facets: it is taken once (a per-thread table by
+  // vertex id) and only the distinct ones are sorted.
+  thread_local StampedTable<bool> seen;
+  seen.next_round(points_.size());
   std::vector<uint32_t> vs;
-  for (uint32_t f : cells_[c].facets) vs.insert(vs.end(), facets_[f].loop.begin(), facets_[f].loop.end());
+  for (uint32_t f : cells_[c].facets)
+    for (const uint32_t v : facets_[f].loop)
+      if (!seen.find(v)) {
+        seen.set(v, true);
+        vs.push_back(v);
+      }
   std::sort(vs.begin(), vs.end());
-  vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
   return vs;
 }
 

@@ -1025,12 +1025,43 @@ bool min_distance_beyond(const TriangleShell& a, const TriangleShell& b, double 
   std::sort(mine.begin(), mine.end(),
             [](const Vec3& u, const Vec3& v) { return std::tie(u.x, u.y, u.z) < std::tie(v.x, v.y, v.z); });
   const double d2 = d * d;
+  // A point farther than d from a triangle's box along an axis is farther than d from the
+  // triangle: only the triangles whose box, grown by a little more than d (for the rounding of
+  // the closest point), holds the point are measured. The answer is the full scan's.
+  // Likewise a point farther than d from a triangle's plane, for a triangle whose normal is
+  // well conditioned (its sine of the smallest corner angle not below 1e-6, so that the plane's
+  // distance is off by far less than the margin).
+  std::vector<BBox> boxes(b.triangles.size());
+  std::vector<Plane> planes(b.triangles.size(), Plane{{0, 0, 0}, 0});
+  BBox all;
+  for (size_t i = 0; i < b.triangles.size(); ++i) {
+    const auto& t = b.triangles[i];
+    for (const uint32_t v : t) boxes[i].add(b.points[v]);
+    all.add(boxes[i].lo);
+    all.add(boxes[i].hi);
+    const Vec3 &p0 = b.points[t[0]], &p1 = b.points[t[1]], &p2 = b.points[t[2]];
+    const Vec3 n = cross(p1 - p0, p2 - p0);
+    const double longest = std::max({norm(p1 - p0), norm(p2 - p0), norm(p2 - p1)});
+    if (norm(n) >= 1e-6 * longest * longest && norm(n) > 0) planes[i] = {n / norm(n), -dot(n / norm(n), p0)};
+  }
+  if (!all.valid()) return true;
+  const double reach = 1.001 * d + 1e-12 * (1 + std::abs(all.lo.x) + std::abs(all.lo.y) + std::abs(all.lo.z) +
+                                            std::abs(all.hi.x) + std::abs(all.hi.y) + std::abs(all.hi.z));
+  auto within = [reach](const BBox& box, const Vec3& p) {
+    for (int k = 0; k < 3; ++k)
+      if (p[k] < box.lo[k] - reach || p[k] > box.hi[k] + reach) return false;
+    return true;
+  };
   for (const Vec3& p : a.points) {
+    if (!within(all, p)) continue;
     if (std::binary_search(mine.begin(), mine.end(), p, [](const Vec3& u, const Vec3& v) {
           return std::tie(u.x, u.y, u.z) < std::tie(v.x, v.y, v.z);
         }))
       continue;  // a vertex of both: on the common surface
-    for (const auto& t : b.triangles) {
+    for (size_t i = 0; i < b.triangles.size(); ++i) {
+      if (!within(boxes[i], p)) continue;
+      if (planes[i].n != Vec3{0, 0, 0} && std::abs(planes[i].signed_distance(p)) > reach) continue;
+      const auto& t = b.triangles[i];
       const Vec3 q = p - closest_on_triangle(p, b.points[t[0]], b.points[t[1]], b.points[t[2]]);
       if (dot(q, q) <= d2) return false;
     }

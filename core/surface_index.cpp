@@ -84,12 +84,17 @@ bool triangle_enters(const K::Triangle_3& t, const std::vector<Plane>& outward, 
   for (int k = 0; k < 3; ++k) poly.push_back({t[k].x(), t[k].y(), t[k].z()});
   for (const Plane& pl : outward) {
     next.clear();
+    // Each vertex's distance once: an edge's end is the next edge's start.
+    const double d0 = pl.signed_distance(poly[0]) + depth;
+    double da = d0;
     for (size_t i = 0; i < poly.size(); ++i) {
       const Vec3& a = poly[i];
-      const Vec3& c = poly[(i + 1) % poly.size()];
-      const double da = pl.signed_distance(a) + depth, dc = pl.signed_distance(c) + depth;
+      const bool last = i + 1 == poly.size();
+      const Vec3& c = poly[last ? 0 : i + 1];
+      const double dc = last ? d0 : pl.signed_distance(c) + depth;
       if (da <= 0) next.push_back(a);
       if ((da < 0 && dc > 0) || (da > 0 && dc < 0)) next.push_back(a + (c - a) * (da / (da - dc)));
+      da = dc;
     }
     poly.swap(next);
     if (poly.size() < 3) return false;

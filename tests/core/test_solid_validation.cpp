@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 
+#include "core/geometry.hpp"
 #include "core/solid_validation.hpp"
 
 namespace mc {
@@ -379,6 +380,44 @@ TEST(SolidValidation, InteriorsOverlapExactly) {
   EXPECT_TRUE(interiors_overlap(a.shell, sliver.shell));
   EXPECT_TRUE(interiors_overlap(sliver.shell, a.shell));
   EXPECT_TRUE(interiors_overlap(a.shell, a.shell));
+}
+
+// The full scan min_distance_beyond stands for: every point of `a` not a point of `b` against
+// every triangle of `b`.
+bool beyond_by_full_scan(const TriangleShell& a, const TriangleShell& b, double d) {
+  for (const Vec3& p : a.points) {
+    if (std::find(b.points.begin(), b.points.end(), p) != b.points.end()) continue;
+    for (const auto& t : b.triangles) {
+      const Vec3 q = p - closest_on_triangle(p, b.points[t[0]], b.points[t[1]], b.points[t[2]]);
+      if (dot(q, q) <= d * d) return false;
+    }
+  }
+  return true;
+}
+
+TEST(SolidValidation, MinDistanceBeyondAnswersAsTheFullScan) {
+  // Boxes side by side, apart by 0 (touching: the shared corners are left out), by less than,
+  // exactly and more than the distance, and overlapping; far from the origin as a tile is.
+  const Vec3 far{85000, 446000, 0};
+  const double d = 0.002;
+  const SolidCheck a = check_solid(box(far + Vec3{0, 0, 0}, far + Vec3{4, 3, 5}));
+  ASSERT_TRUE(a.valid());
+  int near_cases = 0;
+  for (const double gap : {0.0, 0.001, 0.002, 0.0021, 0.5, -0.3})
+    for (const double dz : {0.0, 0.7}) {
+      SCOPED_TRACE(testing::Message() << "gap " << gap << " dz " << dz);
+      const SolidCheck b = check_solid(box(far + Vec3{4 + gap, 1, dz}, far + Vec3{7, 2.5, 3 + dz}));
+      ASSERT_TRUE(b.valid());
+      for (const double dist : {d, 0.01}) {
+        EXPECT_EQ(min_distance_beyond(a.shell, b.shell, dist), beyond_by_full_scan(a.shell, b.shell, dist));
+        const bool expected = beyond_by_full_scan(b.shell, a.shell, dist);  // b's corners near a's face
+        EXPECT_EQ(min_distance_beyond(b.shell, a.shell, dist), expected);
+        near_cases += !expected;
+      }
+    }
+  EXPECT_GT(near_cases, 4);  // the scan does find points within the distance
+  TriangleShell empty;
+  EXPECT_TRUE(min_distance_beyond(a.shell, empty, d));
 }
 
 }  // namespace
