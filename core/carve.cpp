@@ -470,16 +470,18 @@ CellVote vote_cell(const CellComplex& cx, uint32_t c, const BBox& box, const Car
   // list is clipped once.
   const bool surface_tests = !free_cell && p.vote_batch > 0 && (p.grazing || p.regions);
   const std::vector<Plane> outward = surface_tests ? outward_planes(cx, c) : std::vector<Plane>{};
-  const std::vector<uint32_t> near =
-      surface_tests ? (p.grazing ? p.grazing : p.regions)->touching(box) : std::vector<uint32_t>{};
+  const SurfaceIndex* index = p.grazing ? p.grazing : p.regions;
+  const std::vector<uint32_t> near = surface_tests ? index->touching(box) : std::vector<uint32_t>{};
+  const bool one_index = p.regions == index;  // the regions' triangles are `near`'s ids
   std::optional<std::vector<uint32_t>> entering;
-  if (surface_tests && p.regions && p.regions == p.grazing && p.graze_depth == k.hair)
+  if (surface_tests && p.grazing && one_index && p.graze_depth == k.hair)
     entering = p.regions->entering(outward, near, k.hair);
   const bool grazed = surface_tests && p.grazing &&
                       !(entering ? !entering->empty() : p.grazing->enters(outward, near, p.graze_depth));
   if (grazed) band_vote(outward, pts, first_id, p, classify, in, points);
   if (!grazed && !free_cell && p.regions && p.vote_batch > 0) {
-    if (!entering) entering = p.regions->entering(outward, near, k.hair);
+    if (!entering)
+      entering = p.regions->entering(outward, one_index ? near : p.regions->touching(box), k.hair);
     // The score queues a cell when more than `inconsistency` c³ of it is mislabelled, i.e. when
     // both labels hold more than that volume's share of the n points.
     const size_t mixed_at =
