@@ -21,17 +21,19 @@ double polytope_volume(const ConvexPolytope& p) {
 
 namespace {
 
-// -1: every vertex on the kept side (or on the plane); +1: none strictly on the kept side (the
-// polytope lies on or beyond the plane); 0: the plane cuts it.
-int polytope_side(const ConvexPolytope& p, const Plane& pl, double eps) {
+// Each point's distance to the plane into `dist` (within eps: 0), and the polytope's side: -1
+// every vertex on the kept side (or on the plane); +1 none strictly on the kept side (the
+// polytope lies on or beyond the plane); 0 the plane cuts it. The distances serve the clipping.
+int polytope_side(const ConvexPolytope& p, const Plane& pl, double eps, std::vector<double>& dist) {
   bool below = false, above = false;
-  for (const Vec3& v : p.points) {
-    const double s = pl.signed_distance(v);
+  dist.resize(p.points.size());
+  for (size_t i = 0; i < p.points.size(); ++i) {
+    const double s = pl.signed_distance(p.points[i]);
     below |= s < -eps;
     above |= s > eps;
-    if (below && above) return 0;
+    dist[i] = std::abs(s) <= eps ? 0 : s;
   }
-  return above ? 1 : -1;
+  return below && above ? 0 : (above ? 1 : -1);
 }
 
 // A monotone stand-in for the angle of (x, y) in [0, 4) (no atan2: only the order matters).
@@ -69,16 +71,11 @@ void add_cap(std::vector<Vec3>& pts, const Vec3& n, double eps, ConvexPolytope& 
 
 namespace {
 
-// clip_polytope for a plane that cuts `p` (polytope_side 0).
-void clip_cut(const ConvexPolytope& p, const Plane& keep_below, double eps, ConvexPolytope& out) {
+// clip_polytope for a plane that cuts `p` (polytope_side 0), from its points' distances `dist`
+// (a face's edges read them at both ends).
+void clip_cut(const ConvexPolytope& p, const Plane& keep_below, double eps, const std::vector<double>& dist,
+              ConvexPolytope& out) {
   out.clear();
-  // Each point's distance once (within eps: 0); a face's edges read them at both ends.
-  thread_local std::vector<double> dist;
-  dist.resize(p.points.size());
-  for (size_t i = 0; i < p.points.size(); ++i) {
-    const double s = keep_below.signed_distance(p.points[i]);
-    dist[i] = std::abs(s) <= eps ? 0 : s;
-  }
   thread_local std::vector<Vec3> on_plane;
   on_plane.clear();
   bool has_cap = false;  // a face of `p` lies on the plane: it is the cut's face already
@@ -109,14 +106,15 @@ void clip_cut(const ConvexPolytope& p, const Plane& keep_below, double eps, Conv
 }  // namespace
 
 void clip_polytope(const ConvexPolytope& p, const Plane& keep_below, double eps, ConvexPolytope& out) {
-  const int side = polytope_side(p, keep_below, eps);
+  thread_local std::vector<double> dist;
+  const int side = polytope_side(p, keep_below, eps, dist);
   if (side < 0) {
     out = p;
     return;
   }
   out.clear();
   if (side > 0) return;
-  clip_cut(p, keep_below, eps, out);
+  clip_cut(p, keep_below, eps, dist, out);
 }
 
 ColumnVolume::ColumnVolume(const TriangleSoup& soup) {
@@ -213,11 +211,12 @@ double ColumnVolume::under(const ConvexPolytope& cell, const Column& t, double e
   thread_local ConvexPolytope scratch[2];
   const ConvexPolytope* at = &cell;
   int next = 0;
+  thread_local std::vector<double> dist;
   for (const Plane& pl : planes) {
-    const int side = polytope_side(*at, pl, eps);
+    const int side = polytope_side(*at, pl, eps, dist);
     if (side > 0) return 0;
     if (side < 0) continue;
-    clip_cut(*at, pl, eps, scratch[next]);
+    clip_cut(*at, pl, eps, dist, scratch[next]);
     at = &scratch[next];
     next ^= 1;
     if (at->empty()) return 0;

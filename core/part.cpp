@@ -327,12 +327,13 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
   // pairs on a plane are not parallel or lie more than δ apart, and are rejected from these alone.
   struct Reach {
     Vec3 point, dir, mid;
+    bool reflex;
   };
   std::vector<Reach> reach;
   auto add_reach = [&](size_t from) {
     for (size_t k = from; k < lines.size(); ++k) {
       const ConcaveLine& l = lines[k].line;
-      reach.push_back({l.point, l.dir, l.point + l.dir * (0.5 * (l.t0 + l.t1))});
+      reach.push_back({l.point, l.dir, l.point + l.dir * (0.5 * (l.t0 + l.t1)), lines[k].reflex});
     }
   };
   add_reach(0);
@@ -350,15 +351,14 @@ void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double d
   size_t first_new = 0;
   auto try_row = [&](size_t i, size_t from) {
     cand.clear();
-    const bool any = lines[i].reflex;
+    const bool any = reach[i].reflex;
     for (uint32_t pl : planes_of(i))
       for_lines_on(pl, from, [&](size_t k) {
-        if (alive[k] && (any || lines[k].reflex)) cand.push_back(k);
+        if (alive[k] && (any || reach[k].reflex) && may_merge(i, k)) cand.push_back(k);
       });
     std::sort(cand.begin(), cand.end());
     cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
     for (const size_t j : cand) {
-      if (!may_merge(i, j)) continue;
       const std::optional<ConcaveLine> M = merged_line(lines[i], lines[j], reg, delta);
       if (!M) continue;
       // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were; the
