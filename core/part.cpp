@@ -294,118 +294,150 @@ void append_remainders(std::vector<RawLine>& lines, size_t src, const ConcaveLin
 
 }  // namespace
 
-void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
-  // Lines keep their index for the whole merge: a merged pair is marked dead and its replacements
-  // are appended, so the live lines in index order are the list a rebuilt vector would hold, and
-  // the plane index is built once (new lines go to `added`).
-  std::vector<uint8_t> alive(lines.size(), 1);
-  std::vector<std::pair<uint32_t, size_t>> by_plane;  // (plane, line) of the first lines, sorted
-  for (size_t k = 0; k < lines.size(); ++k) {
-    by_plane.emplace_back(lines[k].line.p1, k);
-    by_plane.emplace_back(lines[k].line.p2, k);
+namespace {
+
+// The concave-line merge (merge_lines). Lines keep their index for the whole merge: a merged pair
+// is marked dead and its replacements are appended, so the live lines in index order are the list
+// a rebuilt vector would hold, and the plane index is built once (new lines go to `added_`).
+class LineMerge {
+ public:
+  LineMerge(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta)
+      : lines_(lines), reg_(reg), delta_(delta), alive_(lines.size(), 1), first_lines_(lines.size()) {
+    for (size_t k = 0; k < lines.size(); ++k) {
+      by_plane_.emplace_back(lines[k].line.p1, k);
+      by_plane_.emplace_back(lines[k].line.p2, k);
+    }
+    std::sort(by_plane_.begin(), by_plane_.end());
+    add_reach(0);
   }
-  std::sort(by_plane.begin(), by_plane.end());
-  const size_t first_lines = lines.size();
-  // The lines appended since, by plane (each list ascending): rows scan only their planes' lists.
-  std::unordered_map<uint32_t, std::vector<size_t>> added;
-  auto planes_of = [&](size_t k) {
-    const ConcaveLine& l = lines[k].line;
-    return std::array<uint32_t, 2>{l.p1, l.p2};
-  };
-  // Calls f(k) for every line k >= from on plane pl (the first lines, then the appended ones).
-  auto for_lines_on = [&](uint32_t pl, size_t from, auto&& f) {
-    if (from < first_lines)
-      for (auto lo =
-               std::lower_bound(by_plane.begin(), by_plane.end(), std::pair<uint32_t, size_t>{pl, from});
-           lo != by_plane.end() && lo->first == pl; ++lo)
-        f(lo->second);
-    if (auto it = added.find(pl); it != added.end())
-      for (auto k = std::lower_bound(it->second.begin(), it->second.end(), from); k != it->second.end(); ++k)
-        f(*k);
-  };
+
+  // Each pass looks for the first merging pair in (row, line) order. After a merge at row i every
+  // pair of lines that were both there before and whose first line came before i was found not to
+  // merge (a pure function of the two lines), so the rows before i only pair with the new lines:
+  // only the rows that share a plane with a new line are tried, then every row from i on.
+  void run() {
+    size_t resume = 0;
+    for (int guard = 0; guard < 1000; ++guard) {
+      bool merged = false;
+      if (resume > 0) {
+        const size_t new_from = first_new_;
+        for (const size_t r : rows_sharing_new_lines(resume))
+          if (try_row(r, new_from)) {
+            resume = r, merged = true;
+            break;
+          }
+      }
+      for (size_t i = resume; i < lines_.size() && !merged; ++i)
+        if (alive_[i] && try_row(i, i + 1)) resume = i, merged = true;
+      if (!merged) break;
+    }
+    size_t kept = 0;
+    for (size_t k = 0; k < lines_.size(); ++k)
+      if (alive_[k]) lines_[kept++] = std::move(lines_[k]);
+    lines_.resize(kept);
+  }
+
+ private:
   // Per line, what merged_line tests first (its direction and its middle), kept compact: most
   // pairs on a plane are not parallel or lie more than δ apart, and are rejected from these alone.
   struct Reach {
     Vec3 point, dir, mid;
     bool reflex;
   };
-  std::vector<Reach> reach;
-  auto add_reach = [&](size_t from) {
-    for (size_t k = from; k < lines.size(); ++k) {
-      const ConcaveLine& l = lines[k].line;
-      reach.push_back({l.point, l.dir, l.point + l.dir * (0.5 * (l.t0 + l.t1)), lines[k].reflex});
+
+  std::array<uint32_t, 2> planes_of(size_t k) const { return {lines_[k].line.p1, lines_[k].line.p2}; }
+
+  void add_reach(size_t from) {
+    for (size_t k = from; k < lines_.size(); ++k) {
+      const ConcaveLine& l = lines_[k].line;
+      reach_.push_back({l.point, l.dir, l.point + l.dir * (0.5 * (l.t0 + l.t1)), lines_[k].reflex});
     }
-  };
-  add_reach(0);
+  }
+
   // The same rejections as merged_line's, on the same values.
-  auto may_merge = [&](size_t i, size_t j) {
-    const Reach &a = reach[i], &b = reach[j];
+  bool may_merge(size_t i, size_t j) const {
+    const Reach &a = reach_[i], &b = reach_[j];
     if (std::abs(dot(a.dir, b.dir)) < 0.95) return false;
     const Vec3 off = b.mid - a.point;
-    return !(norm(off - a.dir * dot(off, a.dir)) > delta);
-  };
-  std::vector<size_t> cand, rows;
+    return !(norm(off - a.dir * dot(off, a.dir)) > delta_);
+  }
+
+  // Calls f(k) for every line k >= from on plane pl (the first lines, then the appended ones).
+  template <class F>
+  void for_lines_on(uint32_t pl, size_t from, F&& f) const {
+    if (from < first_lines_)
+      for (auto lo =
+               std::lower_bound(by_plane_.begin(), by_plane_.end(), std::pair<uint32_t, size_t>{pl, from});
+           lo != by_plane_.end() && lo->first == pl; ++lo)
+        f(lo->second);
+    if (auto it = added_.find(pl); it != added_.end())
+      for (auto k = std::lower_bound(it->second.begin(), it->second.end(), from); k != it->second.end(); ++k)
+        f(*k);
+  }
+
+  // The live rows before `resume` that share a plane with a line appended by the last merge.
+  const std::vector<size_t>& rows_sharing_new_lines(size_t resume) {
+    rows_.clear();
+    for (size_t k = first_new_; k < lines_.size(); ++k)
+      for (uint32_t pl : planes_of(k))
+        for_lines_on(pl, 0, [&](size_t r) {
+          if (r < resume && alive_[r]) rows_.push_back(r);
+        });
+    std::sort(rows_.begin(), rows_.end());
+    rows_.erase(std::unique(rows_.begin(), rows_.end()), rows_.end());
+    return rows_;
+  }
+
   // Tries row i against the live lines from `from` on that share a plane with it, in index order;
   // two lines merge only if one of them is reflex (merged_line), so a convex row pairs only with
   // reflex lines. A merge marks both dead and appends the remainders and the merged line.
-  size_t first_new = 0;
-  auto try_row = [&](size_t i, size_t from) {
-    cand.clear();
-    const bool any = reach[i].reflex;
+  bool try_row(size_t i, size_t from) {
+    cand_.clear();
+    const bool any = reach_[i].reflex;
     for (uint32_t pl : planes_of(i))
       for_lines_on(pl, from, [&](size_t k) {
-        if (alive[k] && (any || reach[k].reflex) && may_merge(i, k)) cand.push_back(k);
+        if (alive_[k] && (any || reach_[k].reflex) && may_merge(i, k)) cand_.push_back(k);
       });
-    std::sort(cand.begin(), cand.end());
-    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-    for (const size_t j : cand) {
-      const std::optional<ConcaveLine> M = merged_line(lines[i], lines[j], reg, delta);
+    std::sort(cand_.begin(), cand_.end());
+    cand_.erase(std::unique(cand_.begin(), cand_.end()), cand_.end());
+    for (const size_t j : cand_) {
+      const std::optional<ConcaveLine> M = merged_line(lines_[i], lines_[j], reg_, delta_);
       if (!M) continue;
       // Remainders of L1 and L2 outside the overlap, longer than δ, stay as they were; the
       // pieces and the merged line are appended.
-      const size_t before = lines.size();
-      for (const size_t src : {i, j}) append_remainders(lines, src, *M, delta);
-      lines.push_back({*M, M->angle > M_PI});
-      alive[i] = alive[j] = 0;
-      alive.resize(lines.size(), 1);
+      const size_t before = lines_.size();
+      for (const size_t src : {i, j}) append_remainders(lines_, src, *M, delta_);
+      lines_.push_back({*M, M->angle > M_PI});
+      alive_[i] = alive_[j] = 0;
+      alive_.resize(lines_.size(), 1);
       add_reach(before);
-      for (size_t k = before; k < lines.size(); ++k) {
-        added[lines[k].line.p1].push_back(k);
-        if (lines[k].line.p2 != lines[k].line.p1) added[lines[k].line.p2].push_back(k);
+      for (size_t k = before; k < lines_.size(); ++k) {
+        added_[lines_[k].line.p1].push_back(k);
+        if (lines_[k].line.p2 != lines_[k].line.p1) added_[lines_[k].line.p2].push_back(k);
       }
-      first_new = before;
+      first_new_ = before;
       return true;
     }
     return false;
-  };
-  // Each pass looks for the first merging pair in (row, line) order. After a merge at row i every
-  // pair of lines that were both there before and whose first line came before i was found not to
-  // merge (a pure function of the two lines), so the rows before i only pair with the new lines:
-  // only the rows that share a plane with a new line are tried, then every row from i on.
-  size_t resume = 0;
-  for (int guard = 0; guard < 1000; ++guard) {
-    bool merged = false;
-    if (resume > 0) {
-      rows.clear();
-      for (size_t k = first_new; k < lines.size(); ++k)
-        for (uint32_t pl : planes_of(k))
-          for_lines_on(pl, 0, [&](size_t r) {
-            if (r < resume && alive[r]) rows.push_back(r);
-          });
-      std::sort(rows.begin(), rows.end());
-      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-      const size_t new_from = first_new;
-      for (size_t ri = 0; ri < rows.size() && !merged; ++ri)
-        if (try_row(rows[ri], new_from)) resume = rows[ri], merged = true;
-    }
-    for (size_t i = resume; i < lines.size() && !merged; ++i)
-      if (alive[i] && try_row(i, i + 1)) resume = i, merged = true;
-    if (!merged) break;
   }
-  size_t kept = 0;
-  for (size_t k = 0; k < lines.size(); ++k)
-    if (alive[k]) lines[kept++] = std::move(lines[k]);
-  lines.resize(kept);
+
+  std::vector<RawLine>& lines_;
+  const PlaneRegistry& reg_;
+  double delta_;
+  std::vector<uint8_t> alive_;
+  std::vector<std::pair<uint32_t, size_t>> by_plane_;  // (plane, line) of the first lines, sorted
+  size_t first_lines_;
+  // The lines appended since, by plane (each list ascending): rows scan only their planes' lists.
+  std::unordered_map<uint32_t, std::vector<size_t>> added_;
+  std::vector<Reach> reach_;
+  std::vector<size_t> cand_, rows_;
+  size_t first_new_ = 0;  // the first line appended by the last merge
+};
+
+}  // namespace
+
+void merge_lines(std::vector<RawLine>& lines, const PlaneRegistry& reg, double delta) {
+  LineMerge(lines, reg, delta).run();
 }
 
 // The hull's facets that a ray along unit b leaves through (n·b > 0), with n·b: computed once
