@@ -1028,9 +1028,9 @@ bool min_distance_beyond(const TriangleShell& a, const TriangleShell& b, double 
   // A point farther than d from a triangle's box along an axis is farther than d from the
   // triangle: only the triangles whose box, grown by a little more than d (for the rounding of
   // the closest point), holds the point are measured. The answer is the full scan's.
-  // Likewise a point farther than d from a triangle's plane, for a triangle whose normal is
-  // well conditioned (its sine of the smallest corner angle not below 1e-6, so that the plane's
-  // distance is off by far less than the margin).
+  // Likewise a point farther than d from a triangle's plane, for a triangle whose normal is well
+  // conditioned (twice its area at least 1e-6 of its longest edge squared: no thinner than a
+  // millionth of its length), so that the plane's distance is off by far less than the margin.
   std::vector<BBox> boxes(b.triangles.size());
   std::vector<Plane> planes(b.triangles.size(), Plane{{0, 0, 0}, 0});
   BBox all;
