@@ -111,75 +111,33 @@ std::pair<std::string, int> first_overlap(const std::vector<EncodedSolid>& solid
   return {"", -1};
 }
 
-EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
-                          const std::vector<PartResult>& parts, const Preprocessed& pre,
-                          const std::string& lod, const std::string& version, VertexPool& pool,
-                          bool conforming, bool separate = false, bool plain = false,
-                          const std::vector<PolygonMesh>* level_meshes = nullptr) {
-  EncodedLevel e;
-  e.lv.index = i;
-  e.lv.threshold = threshold;
-  e.lv.parts = parts.size();
-  if (parts.empty()) {
-    e.defect = "no parts";
-    return e;
+// A part repaired on its own may have changed a face it shares: both copies made the same again
+// (repairs are rare: nothing to do, and nothing copied, without one).
+void align_repaired_parts(std::vector<EncodedSolid>& solids, const std::vector<PolygonMesh>& meshes,
+                          const VertexPool& pool, const std::string& lod, const std::string& version) {
+  if (std::none_of(solids.begin(), solids.end(), [](const EncodedSolid& s) { return s.repaired; })) return;
+  std::vector<std::vector<GridFace>> faces;
+  std::vector<bool> repaired;
+  for (EncodedSolid& solid : solids) {
+    faces.push_back(std::move(solid.faces));
+    repaired.push_back(solid.repaired);
   }
+  const std::vector<size_t> changed = align_shared_faces(faces, repaired, pool.vertices());
+  for (size_t k = 0; k < solids.size(); ++k) solids[k].faces = std::move(faces[k]);
+  for (size_t k : changed) {
+    write_solid(solids[k], meshes[k].semantic_labels, lod, version);
+    solids[k].repaired = true;  // counted with the repaired parts
+    SolidCheck check;
+    grid_solid_defect(solids[k].faces, pool.vertices(), &check);
+    solids[k].triangles = std::move(check.shell);
+  }
+}
+
+// The level's valid parts as staged BuildingParts, with the level's convexity and degree figures.
+void stage_parts(const std::string& building, size_t i, double threshold,
+                 const std::vector<PartResult>& parts, std::vector<PolygonMesh>& meshes,
+                 std::vector<EncodedSolid>& solids, EncodedLevel& e) {
   double total_volume = 0, largest = 0, weighted_cvx = 0, sum_cvx = 0, min_cvx = 1;
-  std::vector<PolygonMesh> meshes;
-  if (conforming) meshes = level_meshes ? *level_meshes : level_part_meshes(pre, parts);
-  else
-    for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
-  if (separate) separate_near_touches(meshes, pool.step());
-  // Vertex ids in part order (the pool's numbering), then every part checked on its own in
-  // parallel: the first invalid part fails the level, as when checked one by one (a failed
-  // level's vertices are rolled back by the caller).
-  std::vector<std::vector<GridFace>> faces(parts.size());
-  std::vector<size_t> dropped(parts.size(), 0);
-  for (size_t j = 0; j < parts.size(); ++j) faces[j] = grid_faces(meshes[j], pool, dropped[j]);
-  std::vector<EncodedSolid> solids(parts.size());
-  tbb::parallel_for(size_t(0), parts.size(), with_thread_tag([&](size_t j) {
-                      solids[j] = checked_solid(std::move(faces[j]), meshes[j].semantic_labels,
-                                                pool.vertices(), pool.step(), lod, version);
-                      solids[j].dropped_faces = dropped[j];
-                    }));
-  for (size_t j = 0; j < parts.size(); ++j) {
-    e.check_seconds += solids[j].check_seconds;
-    if (!solids[j].defect.empty()) {
-      e.defect = "part " + std::to_string(j) + " is invalid on the output grid (" + solids[j].defect + ")";
-      e.failed_part = static_cast<int>(j);
-      // For a developer: the part that failed, before rounding (docs/reliability.md).
-      if (const char* dir = std::getenv("MC_DUMP_GRID_DEFECTS"))
-        mc::io::write_off(std::string(dir) + "/" + building + "-L" + std::to_string(i) + "-p" +
-                              std::to_string(j) + (conforming ? "" : "-own") + ".off",
-                          meshes[j]);
-      return e;
-    }
-  }
-  // A part repaired on its own may have changed a face it shares: both copies made the same again
-  // (repairs are rare: nothing to do, and nothing copied, without one).
-  const bool any_repaired =
-      std::any_of(solids.begin(), solids.end(), [](const EncodedSolid& s) { return s.repaired; });
-  if (conforming && any_repaired) {
-    std::vector<std::vector<GridFace>> faces;
-    std::vector<bool> repaired;
-    for (EncodedSolid& solid : solids) {
-      faces.push_back(std::move(solid.faces));
-      repaired.push_back(solid.repaired);
-    }
-    const std::vector<size_t> changed = align_shared_faces(faces, repaired, pool.vertices());
-    for (size_t k = 0; k < solids.size(); ++k) solids[k].faces = std::move(faces[k]);
-    for (size_t k : changed) {
-      write_solid(solids[k], meshes[k].semantic_labels, lod, version);
-      solids[k].repaired = true;  // counted with the repaired parts
-      SolidCheck check;
-      grid_solid_defect(solids[k].faces, pool.vertices(), &check);
-      solids[k].triangles = std::move(check.shell);
-    }
-  }
-  const auto t_overlap = std::chrono::steady_clock::now();
-  std::tie(e.defect, e.failed_part) = first_overlap(solids, parts, pool, conforming, plain);
-  e.check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_overlap).count();
-  if (!e.defect.empty()) return e;
   for (size_t j = 0; j < parts.size(); ++j) {
     const PartResult& part = parts[j];
     PolygonMesh& mesh = meshes[j];
@@ -216,6 +174,57 @@ EncodedLevel encode_level(const std::string& building, size_t i, double threshol
   e.lv.convexity = total_volume > 0 ? weighted_cvx / total_volume : 0.0;
   e.lv.mean_convexity = sum_cvx / static_cast<double>(parts.size());
   e.lv.min_convexity = min_cvx;
+}
+
+EncodedLevel encode_level(const std::string& building, size_t i, double threshold,
+                          const std::vector<PartResult>& parts, const Preprocessed& pre,
+                          const std::string& lod, const std::string& version, VertexPool& pool,
+                          bool conforming, bool separate = false, bool plain = false,
+                          const std::vector<PolygonMesh>* level_meshes = nullptr) {
+  EncodedLevel e;
+  e.lv.index = i;
+  e.lv.threshold = threshold;
+  e.lv.parts = parts.size();
+  if (parts.empty()) {
+    e.defect = "no parts";
+    return e;
+  }
+  std::vector<PolygonMesh> meshes;
+  if (conforming) meshes = level_meshes ? *level_meshes : level_part_meshes(pre, parts);
+  else
+    for (const auto& part : parts) meshes.push_back(part_mesh(pre, part));
+  if (separate) separate_near_touches(meshes, pool.step());
+  // Vertex ids in part order (the pool's numbering), then every part checked on its own in
+  // parallel: the first invalid part fails the level, as when checked one by one (a failed
+  // level's vertices are rolled back by the caller).
+  std::vector<std::vector<GridFace>> faces(parts.size());
+  std::vector<size_t> dropped(parts.size(), 0);
+  for (size_t j = 0; j < parts.size(); ++j) faces[j] = grid_faces(meshes[j], pool, dropped[j]);
+  std::vector<EncodedSolid> solids(parts.size());
+  tbb::parallel_for(size_t(0), parts.size(), with_thread_tag([&](size_t j) {
+                      solids[j] = checked_solid(std::move(faces[j]), meshes[j].semantic_labels,
+                                                pool.vertices(), pool.step(), lod, version);
+                      solids[j].dropped_faces = dropped[j];
+                    }));
+  for (size_t j = 0; j < parts.size(); ++j) {
+    e.check_seconds += solids[j].check_seconds;
+    if (!solids[j].defect.empty()) {
+      e.defect = "part " + std::to_string(j) + " is invalid on the output grid (" + solids[j].defect + ")";
+      e.failed_part = static_cast<int>(j);
+      // For a developer: the part that failed, before rounding (docs/reliability.md).
+      if (const char* dir = std::getenv("MC_DUMP_GRID_DEFECTS"))
+        mc::io::write_off(std::string(dir) + "/" + building + "-L" + std::to_string(i) + "-p" +
+                              std::to_string(j) + (conforming ? "" : "-own") + ".off",
+                          meshes[j]);
+      return e;
+    }
+  }
+  if (conforming) align_repaired_parts(solids, meshes, pool, lod, version);
+  const auto t_overlap = std::chrono::steady_clock::now();
+  std::tie(e.defect, e.failed_part) = first_overlap(solids, parts, pool, conforming, plain);
+  e.check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_overlap).count();
+  if (!e.defect.empty()) return e;
+  stage_parts(building, i, threshold, parts, meshes, solids, e);
   return e;
 }
 
