@@ -13,12 +13,19 @@
 
 namespace mc {
 
+// The table by id that every stable_key_order on this thread uses (one per thread, not one per
+// key type: each order is finished before the next one starts).
+inline StampedTable<uint32_t>& key_order_table() {
+  thread_local StampedTable<uint32_t> table;
+  return table;
+}
+
 // Indices 0..n-1 in (key, index) order; `key(i)` is entry i's key, whose high 32 bits are below
 // `ids`.
 template <class KeyOf>
 std::vector<uint32_t> stable_key_order(uint32_t n, KeyOf key, size_t ids) {
   constexpr uint32_t kEnd = ~0u;
-  thread_local StampedTable<uint32_t> last;  // id -> its latest entry
+  StampedTable<uint32_t>& last = key_order_table();  // id -> its latest entry
   last.next_round(ids);
   std::vector<uint32_t> before(n);  // the previous entry with the same id
   std::vector<uint32_t> firsts;
