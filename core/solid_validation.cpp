@@ -518,6 +518,18 @@ void flip_sliver_ears(CDT& cdt, const std::vector<Vec3>& pts) {
         if (CGAL::orientation(pa, fh->vertex(CDT::ccw(i))->point(), w->point()) != CGAL::LEFT_TURN ||
             CGAL::orientation(pa, w->point(), fh->vertex(CDT::cw(i))->point()) != CGAL::LEFT_TURN)
           continue;
+        // Nor make an ear at least as thin across the new chord (a, w): in a thin quad of ring
+        // edges both diagonals make an ear within 1/100, and flipping each in turn would go back
+        // and forth. The thinner one is flipped, once.
+        const uint32_t wi = w->info();
+        const double ear = norm(cross(pts[a] - pts[b], chord)) / (len * len);
+        const auto thinner_back = [&](uint32_t apex, CDT::Vertex_handle other) {
+          const Vec3 back = pts[wi] - pts[a];
+          const double l2 = dot(back, back);
+          return cdt.is_constrained({n, n->index(other)}) && l2 > 0 &&
+                 norm(cross(pts[apex] - pts[a], back)) / l2 <= ear;
+        };
+        if (thinner_back(d, fh->vertex(CDT::ccw(i))) || thinner_back(b, fh->vertex(CDT::cw(i)))) continue;
         std::array<uint32_t, 3> key{a, std::min(b, d), std::max(b, d)};
         if (!best || key < best->first) best = {{key, {fh, i}}};
       }

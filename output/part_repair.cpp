@@ -123,9 +123,13 @@ std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>&
 // vertex inserted there: the ring then visits it twice, and split_touching cuts it into its lobes.
 // A face of two lobes joined by a neck thinner than the grid (a kept corner a fraction of a
 // millimetre from the face's own straight edge) otherwise folds across the neck when rounded.
+// At most twice as many insertions as the ring had vertices: the bound is fixed before the first
+// one, since where a vertex lies within `tol` of the edges it made, each insertion can make
+// another (a ring that grew without end on a 1 cm grid).
 bool pinch_ring(std::vector<int64_t>& ring, const std::vector<Vec3>& pool, double tol) {
   bool changed = false;
-  for (size_t guard = 0; guard < ring.size() * 2; ++guard) {
+  const size_t limit = ring.size() * 2;
+  for (size_t guard = 0; guard < limit; ++guard) {
     bool inserted = false;
     const size_t n = ring.size();
     for (size_t e = 0; e < n && !inserted; ++e) {

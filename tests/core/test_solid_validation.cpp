@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 
 #include "core/geometry.hpp"
@@ -418,6 +419,37 @@ TEST(SolidValidation, MinDistanceBeyondAnswersAsTheFullScan) {
   EXPECT_GT(near_cases, 4);  // the scan does find points within the distance
   TriangleShell empty;
   EXPECT_TRUE(min_distance_beyond(a.shell, empty, d));
+}
+
+// Twice the area over the longest edge squared: the triangle's height relative to that edge.
+double fatness(const std::vector<Vec3>& p, const std::array<uint32_t, 3>& t) {
+  const Vec3 &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
+  const double l = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
+  return norm(cross(b - a, c - a)) / l;
+}
+
+TEST(SolidValidation, CanonicalTriangulationFlipsAThinQuadsThinnerEarOnce) {
+  // A shared wall on a 1 cm grid (a tile building turned and moved to 6.4e6, then snapped; the
+  // points in the order of their ids in the level's vertex pool): its top edge runs 4 -> 5 -> 2,
+  // with 5 a hair below the line 4-2 and 14 cm from 2. Either diagonal makes an ear within 1/100
+  // of its chord: 5 over 4-2 (1.7 mm over 13 m) or 2 over 5-0 (14 cm over 15.6 m). Flipping each
+  // in turn went back and forth and kept the first, a sliver whose fold made the part's shell
+  // intersect itself (306) at every level.
+  const Vec3 o{6418800, 6606200, 0};
+  const std::vector<Vec3> p = {o + Vec3{40.65, 10.96, 0.00},  o + Vec3{27.57, 9.88, 0.00},
+                               o + Vec3{40.65, 10.97, 15.63}, o + Vec3{27.57, 9.89, 15.56},
+                               o + Vec3{27.65, 9.90, 15.56},  o + Vec3{40.51, 10.96, 15.63}};
+  auto sorted = [](std::vector<std::array<uint32_t, 3>> tris) {
+    for (auto& t : tris) std::sort(t.begin(), t.end());
+    std::sort(tris.begin(), tris.end());
+    return tris;
+  };
+  std::vector<std::array<uint32_t, 3>> tris, reversed;
+  ASSERT_TRUE(triangulate_polygon_canonical({{0, 1, 3, 4, 5, 2}}, p, tris));
+  ASSERT_TRUE(triangulate_polygon_canonical({{2, 5, 4, 3, 1, 0}}, p, reversed));
+  ASSERT_EQ(tris.size(), 4u);
+  for (const auto& t : tris) EXPECT_GT(fatness(p, t), 1e-3) << t[0] << " " << t[1] << " " << t[2];
+  EXPECT_EQ(sorted(tris), sorted(reversed));  // the face's twin in the neighbour gets the same
 }
 
 }  // namespace

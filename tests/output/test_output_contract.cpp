@@ -332,6 +332,21 @@ TEST(PartRepair, ACollapsedSliverIsClosedOnTheGrid) {
   EXPECT_EQ(r.faces[3].rings[0], (std::vector<int64_t>{9, 12, 7, 6}));    // the spike cut
 }
 
+// A ring of three vertices 1 cm apart on a 1 cm grid (0503100000019355 in the tile's `all` stress
+// variant at seed 9): each lies within the neck tolerance (1.5 steps) of the edge of the other
+// two, so each vertex inserted as a pinch made another edge to pinch; the ring grew without end
+// and the run never finished. The insertions are bounded by the ring's size before the first.
+TEST(PartRepair, ARingSmallerThanTheGridIsPinchedABoundedNumberOfTimes) {
+  const Vec3 o{3879167, 3476108, 0};
+  std::vector<Vec3> pool = {o + Vec3{0.49, 0.04, 3.94}, o + Vec3{0.50, 0.04, 3.93},
+                            o + Vec3{0.49, 0.05, 3.93}};
+  std::vector<mc::output::GridFace> faces = {{{{0, 1, 2}}}};
+  const PartRepair r = check_and_repair(faces, pool, 0.01);
+  EXPECT_FALSE(r.defect.empty());  // one face is no solid; what matters is that it returns
+  for (const auto& f : r.faces)
+    for (const auto& ring : f.rings) EXPECT_LE(ring.size(), 9u);
+}
+
 // The buildings of the 3D BAG tile whose parts val3dity rejected before parts were checked on
 // the output grid (104 on 19275, 25100, 25101; 204 on 27992 and 19275): every part they get now
 // passes val3dity's rules, and the repairs are counted.
