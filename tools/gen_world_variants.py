@@ -16,8 +16,8 @@ stress      seeded variants (random.Random(seed), buildings in file order):
               cm      the input snapped to a 1 cm grid, the file's transform scale 0.01 m
               jitter  every vertex moved by up to +-0.4 mm on each axis (scale 1e-4 m to hold it)
               all     rot, then jitter, then the 1 cm grid (scale 0.01)
-            A vertex shared by two buildings moves with the first (the variants stay files of
-            buildings, not of shared walls). Written as NAME.<variant>.city.json.
+            In rot and all, a vertex two buildings share (a shared wall) is copied, so that each
+            building turns with all of its own vertices. Written as NAME.<variant>.city.json.
 plateau     a PLATEAU-like CityGML 2.0 file (EPSG:6697, gml:posList latitude first, bldg:
             WallSurface/RoofSurface/GroundSurface with lod2MultiSurface, a lod1Solid box and a
             lod2Solid of xlinks to the boundary surfaces, an uro: ADE element in every building)
@@ -72,6 +72,39 @@ def buildings(d):
         yield oid, sorted(set(refs))
 
 
+def own_vertices(d0, v0):
+    """A copy of d0 in which no two buildings share a vertex: a building's references to a vertex
+    an earlier building (file order) uses go to a new copy of it, appended."""
+    d = json.loads(json.dumps(d0))
+    verts = [list(v) for v in v0]
+    cos = d["CityObjects"]
+    taken = set()
+
+    def remap(node, to):
+        if isinstance(node, list):
+            return [remap(x, to) for x in node]
+        return to.get(node, node) if isinstance(node, int) else node
+
+    for oid, refs in list(buildings(d)):
+        to = {}
+        for i in refs:
+            if i in taken:
+                to[i] = len(verts)
+                verts.append(list(v0[i]))
+        taken.update(refs)
+        if not to:
+            continue
+        stack = [oid]
+        while stack:
+            c = cos.get(stack.pop())
+            if not c:
+                continue
+            for g in c.get("geometry", []):
+                g["boundaries"] = remap(g.get("boundaries", []), to)
+            stack.extend(c.get("children", []))
+    return d, verts
+
+
 def stress(args):
     d0, v0 = load(args.input)
     name = os.path.basename(args.input).split(".")[0]
@@ -82,13 +115,16 @@ def stress(args):
     offset = [rnd.uniform(1e6, 1e7), rnd.uniform(1e6, 1e7), 0.0]
     jit = [[rnd.uniform(-4e-4, 4e-4) for _ in range(3)] for _ in v0]
 
+    # Turned buildings get their own copy of every vertex they share with an earlier building (a
+    # shared wall): turned with the first, the vertex would stand metres off the second one's shape.
+    d_own, v_own = own_vertices(d0, v0)
+    jit += [[rnd.uniform(-4e-4, 4e-4) for _ in range(3)] for _ in range(len(v_own) - len(v0))]
+
     def rotated(verts):
-        out, done = list(verts), set()
-        for oid, refs in buildings(d0):
-            refs = [i for i in refs if i not in done]
+        out = list(verts)
+        for oid, refs in buildings(d_own):
             if not refs:
                 continue
-            done.update(refs)
             cx = sum(verts[i][0] for i in refs) / len(refs)
             cy = sum(verts[i][1] for i in refs) / len(refs)
             c, s = math.cos(angles[oid]), math.sin(angles[oid])
@@ -100,10 +136,10 @@ def stress(args):
     def jittered(verts):
         return [[v[k] + jit[i][k] for k in range(3)] for i, v in enumerate(verts)]
 
-    variants = {"rot": (rotated(v0), 0.001), "cm": (v0, 0.01), "jitter": (jittered(v0), 0.0001),
-                "all": (jittered(rotated(v0)), 0.01)}
-    for tag, (verts, scale) in variants.items():
-        d = json.loads(json.dumps(d0))
+    variants = {"rot": (d_own, rotated(v_own), 0.001), "cm": (d0, v0, 0.01), "jitter": (d0, jittered(v0), 0.0001),
+                "all": (d_own, jittered(rotated(v_own)), 0.01)}
+    for tag, (src, verts, scale) in variants.items():
+        d = json.loads(json.dumps(src))
         path = os.path.join(args.out, f"{name}.{tag}.city.json")
         save(d, verts, path, scale)
         print(path)
