@@ -8,25 +8,21 @@ usage: world_variants_test.py SOURCE_DIR
 import json, math, os, subprocess, sys, tempfile
 
 
-def flat(node, out):
-    if isinstance(node, list):
-        for x in node:
-            flat(x, out)
-    elif isinstance(node, int):
-        out.append(node)
+sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
+from gen_world_variants import vertex_refs  # noqa: E402  (the generator's own walk of boundaries)
 
 
 def buildings(d):
-    """Per top-level object: its and its children's vertex references, in file order."""
+    """Per top-level object: its and its children's vertex references in file order (repeats
+    kept, so that a building's references line up with its copy's in a variant)."""
     cos = d["CityObjects"]
     for oid, o in cos.items():
-        if o.get("parents"):
-            continue
-        refs = []
-        for k in [oid] + o.get("children", []):
-            for g in cos.get(k, {}).get("geometry", []):
-                flat(g.get("boundaries", []), refs)
-        yield oid, refs
+        if not o.get("parents"):
+            refs = []
+            for k in [oid] + o.get("children", []):
+                for g in cos.get(k, {}).get("geometry", []):
+                    vertex_refs(g.get("boundaries", []), refs)
+            yield oid, refs
 
 
 def coords(d):
