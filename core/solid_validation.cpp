@@ -511,7 +511,8 @@ void flip_sliver_ears(CDT& cdt, const std::vector<Vec3>& pts) {
                        d = fh->vertex(CDT::cw(i))->info();
         const Vec3 chord = pts[d] - pts[b];
         const double len = norm(chord);
-        if (!(len > 0) || norm(cross(pts[a] - pts[b], chord)) / len > 1e-2 * len) continue;
+        const double height = norm(cross(pts[a] - pts[b], chord));  // a's distance from the chord, × len
+        if (!(len > 0) || height / len > 1e-2 * len) continue;
         // The flip must keep both new triangles (a, b, w) and (a, w, d) turning like the face.
         const CDT::Vertex_handle w = n->vertex(n->index(fh));
         const auto& pa = fh->vertex(i)->point();
@@ -522,7 +523,7 @@ void flip_sliver_ears(CDT& cdt, const std::vector<Vec3>& pts) {
         // edges both diagonals make an ear within 1/100, and flipping each in turn would go back
         // and forth. The thinner one is flipped, once.
         const uint32_t wi = w->info();
-        const double ear = norm(cross(pts[a] - pts[b], chord)) / (len * len);
+        const double ear = height / (len * len);
         const auto thinner_back = [&](uint32_t apex, CDT::Vertex_handle other) {
           const Vec3 back = pts[wi] - pts[a];
           const double l2 = dot(back, back);

@@ -123,9 +123,9 @@ std::vector<GridFace> split_touching(const GridFace& f, const std::vector<Vec3>&
 // vertex inserted there: the ring then visits it twice, and split_touching cuts it into its lobes.
 // A face of two lobes joined by a neck thinner than the grid (a kept corner a fraction of a
 // millimetre from the face's own straight edge) otherwise folds across the neck when rounded.
-// At most twice as many insertions as the ring had vertices: the bound is fixed before the first
-// one, since where a vertex lies within `tol` of the edges it made, each insertion can make
-// another (a ring that grew without end on a 1 cm grid).
+// At most twice as many insertions as the ring had vertices, a bound fixed before the first one:
+// in a ring smaller than `tol` (three vertices a grid step apart) each vertex lies within `tol` of
+// the edges the last insertion made, so every insertion makes another.
 bool pinch_ring(std::vector<int64_t>& ring, const std::vector<Vec3>& pool, double tol) {
   bool changed = false;
   const size_t limit = ring.size() * 2;

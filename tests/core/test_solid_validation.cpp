@@ -433,8 +433,8 @@ TEST(SolidValidation, CanonicalTriangulationFlipsAThinQuadsThinnerEarOnce) {
   // points in the order of their ids in the level's vertex pool): its top edge runs 4 -> 5 -> 2,
   // with 5 a hair below the line 4-2 and 14 cm from 2. Either diagonal makes an ear within 1/100
   // of its chord: 5 over 4-2 (1.7 mm over 13 m) or 2 over 5-0 (14 cm over 15.6 m). Flipping each
-  // in turn went back and forth and kept the first, a sliver whose fold made the part's shell
-  // intersect itself (306) at every level.
+  // in turn would go back and forth and could end on the first, a sliver whose fold makes the
+  // part's shell intersect itself (306).
   const Vec3 o{6418800, 6606200, 0};
   const std::vector<Vec3> p = {o + Vec3{40.65, 10.96, 0.00},  o + Vec3{27.57, 9.88, 0.00},
                                o + Vec3{40.65, 10.97, 15.63}, o + Vec3{27.57, 9.89, 15.56},
